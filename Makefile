@@ -1,0 +1,48 @@
+# OpenRCX front door.  `make` builds everything, `make test` runs every test, `make firmware` the brick image,
+# `make bench` prints the benchmarks.  Each target first installs the Debian packages it needs when missing.
+BUILD      ?= build
+HOST_DIR   := $(BUILD)/host
+TARGET_DIR := $(BUILD)/h8300
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+
+# command-or-file:debian-package
+HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc
+TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
+BENCH_DEPS  := valgrind:valgrind
+
+.PHONY: all host firmware test bench deps-host deps-target deps-bench clean
+
+all: host firmware
+
+define install_missing
+	@missing=""; for d in $(1); do what=$${d%%:*}; pkg=$${d##*:}; \
+	  if [ "$${what#/}" != "$$what" ]; then [ -e "$$what" ] || missing="$$missing $$pkg"; \
+	  else command -v "$$what" >/dev/null 2>&1 || missing="$$missing $$pkg"; fi; done; \
+	if [ -n "$$missing" ]; then echo "installing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; fi
+endef
+
+deps-host:
+	$(call install_missing,$(HOST_DEPS))
+deps-target:
+	$(call install_missing,$(TARGET_DEPS))
+deps-bench:
+	$(call install_missing,$(BENCH_DEPS))
+
+host: deps-host
+	cmake -S . -B $(HOST_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+	cmake --build $(HOST_DIR) -j $(JOBS)
+
+firmware: deps-target
+	cmake -S . -B $(TARGET_DIR) -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/linker/h8300-hms.cmake >/dev/null
+	cmake --build $(TARGET_DIR) -j $(JOBS)
+
+test: host firmware
+	cd $(HOST_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: host deps-bench
+	$(HOST_DIR)/tests/bench_vm
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,32 @@
+/*
+ * Sizes of the RCX 2.0 virtual machine (spec "Virtual machine characteristics", p. 5, and
+ * reference-firmware.md "limits"). A port may override RCX_ARENA_SIZE before including this header.
+ */
+#ifndef RCX_LIMITS_H
+#define RCX_LIMITS_H
+
+#define RCX_PROGRAMS 5      /* program slots 0-4 (shown as 1-5 on the LCD) */
+#define RCX_TASKS 10        /* tasks per program */
+#define RCX_SUBS 8          /* subroutines per program */
+#define RCX_GLOBALS 32      /* persistent global variables 0-31 */
+#define RCX_LOCALS 16       /* locals per task, variable numbers 32-47 */
+#define RCX_VARS (RCX_GLOBALS + RCX_LOCALS)
+#define RCX_TIMERS 4        /* 100 ms system timers */
+#define RCX_LOOP_LEVELS 4   /* SetLoopCounter nesting */
+#define RCX_EVENTS 16
+#define RCX_COUNTERS 3      /* counters 0-2 are globals 0-2 */
+#define RCX_SENSORS 3
+#define RCX_MOTORS 3
+#define RCX_UART_BYTES 18   /* source 33: 16 data bytes, PackConf, UartConf */
+
+#define RCX_FIRMWARE_VERSION 328 /* source 35: version x 100, as firm0328 reports */
+
+/* Bytes of program memory shared by the code of all slots and the datalog. */
+#ifndef RCX_ARENA_SIZE
+#define RCX_ARENA_SIZE 16384u
+#endif
+
+/* Longest reply a direct command can produce: the memory map, 1 + 94 words. */
+#define RCX_REPLY_MAX 189
+
+#endif

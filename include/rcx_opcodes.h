@@ -1,0 +1,65 @@
+/*
+ * Accessors over the one instruction table in rcx_opcodes.def.
+ *
+ * Operand kinds used in the layout column (bytes consumed in brackets):
+ *   b [1] plain number         v [1] variable number        x [1] sensor mode | slope
+ *   w [2] 16-bit number        s [2] source, 8-bit value     S [3] source, 16-bit value
+ *   d [2] destination source (bits 0-5) and index             m [1] motor list (bits 0-2)
+ *   M [1] motors + on/off/float (bits 6-7)                     D [1] motors + direction (bits 6-7)
+ *   j [1] jump: bits 0-6 distance, bit 7 backwards             J [2] jump: 15-bit distance, bit 7 of byte 0 backwards
+ *   f [1] forward jump, unsigned                               F [2] forward jump, unsigned 16-bit
+ *   L [2] jump, signed 16-bit                                  c [5] relation|source 1, source 2, value 1 (16), value 2 (8)
+ *   k [*] download block: data bytes then checksum (length from the preceding w)
+ * Every distance counts from the first byte of its own field (spec p. 11).
+ */
+#ifndef RCX_OPCODES_H
+#define RCX_OPCODES_H
+
+#include "rcx_types.h"
+
+#define RCX_DIRECT 0x01
+#define RCX_PROGRAM 0x02
+#define RCX_VARLEN 0xFF
+#define RCX_REPLY_VAR 0xFF
+
+#define RCX_TOGGLE 0x08 /* bit 3 of an opcode byte marks a new IR command; never part of the byte code */
+
+enum rcx_op {
+#define RCX_OP(code, id, name, lasm, params, avail, reply, layout) RCX_OP_##id = code,
+#include "rcx_opcodes.def"
+#undef RCX_OP
+    RCX_OP_NONE = 0xFF
+};
+
+/* Per-opcode properties, indexed by rcx_op_index(). */
+struct rcx_opinfo {
+    u8 code;   /* RCX_OP_NONE for a hole in the table */
+    u8 params; /* operand bytes, or RCX_VARLEN */
+    u8 avail;  /* RCX_DIRECT | RCX_PROGRAM */
+    u8 reply;  /* reply length, 0 none, RCX_REPLY_VAR */
+};
+
+/* The table has 128 rows: the toggle bit folded out of the opcode byte. */
+#define rcx_op_index(op) ((u8)((((op) >> 1) & 0x78) | ((op) & 0x07)))
+
+extern const struct rcx_opinfo rcx_opinfo[128];
+
+/* Operand bytes implied by the low three bits of any opcode, known or not (6 and 7 mean 0 and 1). */
+#define rcx_op_nominal_params(op) ((u8)(((op) & 7) >= 6 ? ((op) & 7) - 6 : ((op) & 7)))
+
+/* Operand bytes an instruction occupies in program code (unknown opcodes: the nominal count). */
+u8 rcx_op_params(u8 op);
+
+/* Name tables, for the host disassembler and tests only (kept out of the firmware image by the linker). */
+struct rcx_opname {
+    u8 code;
+    const char *id;
+    const char *name;
+    const char *lasm;
+    const char *layout;
+};
+extern const struct rcx_opname rcx_opnames[];
+extern const unsigned rcx_opname_count;
+const struct rcx_opname *rcx_opname_find(u8 op);
+
+#endif

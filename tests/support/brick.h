@@ -1,0 +1,30 @@
+/* Test harness: a brick driven only through the machine's public interface. */
+#ifndef TEST_BRICK_H
+#define TEST_BRICK_H
+
+#include "rcx.h"
+
+/* Arena address used by host tests; any value from 0x8000 keeps UploadRam and the memory map realistic. */
+#define TEST_ARENA_ADDR 0x9000u
+
+/* A freshly powered-on brick (heap-allocated: the struct holds the whole program memory). */
+struct rcx *brick_new(void);
+void brick_free(struct rcx *b);
+
+/* Send one direct command; returns the reply length (0 = no reply), reply copied into `reply` if non-NULL. */
+unsigned brick_cmd(struct rcx *b, const u8 *cmd, unsigned len, u8 *reply);
+
+/* Download code into task or subroutine n of the selected slot through 0x25/0x35 and 0x45 blocks of 20 bytes,
+ * exactly as nqc does. Returns the first non-zero status seen, 0 on success. */
+int brick_download(struct rcx *b, int is_task, u8 n, const u8 *code, unsigned len);
+
+/* Advance simulated time by `ms` milliseconds, executing up to `per_ms` byte codes per millisecond. */
+void brick_run_ms(struct rcx *b, unsigned ms, unsigned per_ms);
+
+/* Run until no task is running or waiting, at most `max_ms`; returns the milliseconds used, or -1 on timeout. */
+long brick_run_until_idle(struct rcx *b, unsigned max_ms, unsigned per_ms);
+
+/* Start task n of the selected slot, as `nqc -run` does for task 0. */
+void brick_start(struct rcx *b, u8 n);
+
+#endif

@@ -1,0 +1,74 @@
+/*
+ * The datalog (spec pp. 54-55, 84): entries of 3 bytes at the end of program memory. Entry 0 is the log's own
+ * header, type 0xFF, value = entries used including itself; data points follow from entry 1.
+ */
+#include <string.h>
+#include "rcx.h"
+
+#define LOG_ADDR(b) ((b)->arena + (b)->obj_start[RCX_OBJS])
+
+static void put_entry(struct rcx *b, u16 i, u8 type, u16 value)
+{
+    u8 *e = LOG_ADDR(b) + i * 3u;
+    e[0] = type;
+    e[1] = (u8)value;
+    e[2] = (u8)(value >> 8);
+}
+
+void datalog_set(struct rcx *b, u16 entries)
+{
+    u32 need = (u32)entries + 1; /* the spec allocates one extra element for the count */
+
+    b->log_size = 0;
+    b->log_count = 0;
+    if (need * 3u > mem_free(b))
+        return; /* no room: no datalog, nothing else disturbed */
+    b->log_size = (u16)need;
+    b->log_count = 1;
+    put_entry(b, 0, 0xFF, 1);
+}
+
+/* Entry type: source kind in bits 5-7 (0 variable, 1 timer, 2 sensor value, 4 watch), index in bits 0-4. */
+static u8 entry_kind(u8 src)
+{
+    switch (src) {
+    case 0: return 0;
+    case 1: return 1;
+    case 9: return 2;
+    case 14: return 4;
+    default: return 0xFF;
+    }
+}
+
+void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
+{
+    u8 kind = entry_kind(src);
+    s16 value;
+
+    /* Task locals (index >= 32) cannot be logged: their number does not fit the 5-bit index (spec p. 55). */
+    if (kind == 0xFF || index >= 32 || b->log_count >= b->log_size)
+        return;
+    value = source_get(b, t, src, index);
+    put_entry(b, b->log_count, (u8)(kind << 5 | index), (u16)value);
+    b->log_count++;
+    put_entry(b, 0, 0xFF, b->log_count);
+}
+
+u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
+{
+    u16 used = b->log_count ? b->log_count : 1; /* without a log, entry 0 still reports an empty one */
+    u16 i;
+
+    if (count > (RCX_REPLY_MAX - 1) / 3 || start >= used || count > used - start)
+        return 0;
+    for (i = 0; i < count; i++) {
+        if (b->log_count) {
+            memcpy(out + i * 3u, LOG_ADDR(b) + (start + i) * 3u, 3);
+        } else {
+            out[0] = 0xFF;
+            out[1] = 1;
+            out[2] = 0;
+        }
+    }
+    return (u8)(count * 3u);
+}

@@ -1,0 +1,202 @@
+/*
+ * Direct commands: one command in, its reply out (spec pp. 12-97, reply lengths as nqc expects them,
+ * host-tools.md §1). Framing, echo and the toggle bit belong to the IR layer; this is only the machine's answer.
+ */
+#include <string.h>
+#include "rcx.h"
+#include "engines.h"
+
+static const u8 unlock_key[5] = { 1, 3, 5, 7, 11 };
+/* ROM 3.1 and firmware 3.28 ("3.2.8") so that host tools treat the brick as firm0328 (reference-firmware.md). */
+static const u8 versions[8] = { 0x00, 0x03, 0x00, 0x01, 0x00, 0x03, 0x02, 0x08 };
+
+enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
+
+/* A task leaves a subroutine's code for good when it is stopped; tasks inside it are stopped first. */
+static void stop_tasks_in_sub(struct rcx *b, u8 sub)
+{
+    u8 n;
+    for (n = 0; n < RCX_TASKS; n++) {
+        struct rcx_task *t = &b->task[n];
+        if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB &&
+            (sub == RCX_NO_SUB || t->sub == sub || (t->has_ret && t->ret_sub == sub)))
+            sched_stop_task(b, n);
+    }
+}
+
+/* Deleting never touches code that is still being downloaded: the download stays active (reference-firmware.md). */
+static void delete_obj(struct rcx *b, u8 obj)
+{
+    if (!(b->dl.active && b->dl.obj == obj))
+        mem_delete(b, obj);
+}
+
+static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
+{
+    u8 obj;
+
+    if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
+        return DL_BAD_NUMBER;
+    obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
+    if (b->dl.active) {            /* a new download abandons the unfinished one: that slot ends up empty */
+        b->dl.active = 0;
+        mem_delete(b, b->dl.obj);
+    }
+    if ((u32)size > (u32)mem_free(b) + mem_obj_size(b, obj))
+        return DL_NO_MEMORY;       /* refused: the old code stays as it was */
+    if (is_task)
+        sched_stop_task(b, n);
+    else
+        stop_tasks_in_sub(b, n);
+    mem_resize(b, obj, 0);
+    mem_resize(b, obj, size);      /* cannot fail: checked above */
+    b->dl.active = 1;
+    b->dl.obj = obj;
+    b->dl.expect = 1;
+    b->dl.last = 0xFFFF;
+    b->dl.filled = 0;
+    return DL_OK;
+}
+
+/* 0x45: seq(2) len(2) data(len) checksum(1). Blocks are numbered 1, 2, ..., n, 0. */
+static u8 continue_download(struct rcx *b, const u8 *cmd, u8 len)
+{
+    u16 seq, count, i;
+    u8 sum = 0;
+
+    if (!b->dl.active)
+        return DL_NOT_ACTIVE;
+    if (len < 6)
+        return DL_BLOCK_ERROR;
+    seq = RCX_LE16(cmd + 1);
+    count = RCX_LE16(cmd + 3);
+    if (count > (u16)(len - 6))
+        return DL_BLOCK_ERROR;
+    for (i = 0; i < count; i++)
+        sum = (u8)(sum + cmd[5 + i]);
+    if (sum != cmd[5 + count])
+        return DL_BLOCK_ERROR;
+    if (seq != 0 && seq == b->dl.last)
+        return DL_OK;              /* a repeated block is acknowledged again, not written twice */
+    if ((seq != 0 && seq != b->dl.expect) || count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
+        return DL_BLOCK_ERROR;     /* out of order, or more code than BeginOfTask/Sub announced */
+    memcpy(b->arena + b->obj_start[b->dl.obj] + b->dl.filled, cmd + 5, count);
+    b->dl.filled = (u16)(b->dl.filled + count);
+    b->dl.last = seq;
+    b->dl.expect++;
+    if (seq == 0) {                /* the last block: the code may run from now on */
+        b->dl.active = 0;
+        mem_resize(b, b->dl.obj, b->dl.filled);
+    }
+    return DL_OK;
+}
+
+static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
+{
+    u8 i;
+    for (i = 0; i < count; i++) {
+        u16 a = (u16)(addr + i);
+        u16 off = (u16)(a - b->arena_addr);
+        out[i] = (a >= b->arena_addr && off < RCX_ARENA_SIZE) ? b->arena[off] : 0;
+    }
+    return count;
+}
+
+u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
+{
+    u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
+    const struct rcx_opinfo *info = &rcx_opinfo[rcx_op_index(op)];
+    u8 n = 0, i;
+
+    if (!(info->avail & RCX_DIRECT))
+        return 0;                  /* unknown or program-only: not answered */
+    if (info->params != RCX_VARLEN && len < 1 + info->params)
+        return 0;                  /* truncated */
+    reply[0] = (u8)~cmd[0];
+
+    switch (op) {
+    case RCX_OP_MEMMAP:
+        n = mem_memmap(b, reply + 1);
+        break;
+    case RCX_OP_BATTERY:
+        reply[1] = (u8)b->battery_mv;
+        reply[2] = (u8)(b->battery_mv >> 8);
+        n = 2;
+        break;
+    case RCX_OP_DELETE_ALL_TASKS:
+        sched_stop_all(b);
+        for (i = 0; i < RCX_TASKS; i++)
+            delete_obj(b, rcx_obj_task(b->prog, i));
+        break;
+    case RCX_OP_DELETE_ALL_SUBS:
+        stop_tasks_in_sub(b, RCX_NO_SUB);
+        for (i = 0; i < RCX_SUBS; i++)
+            delete_obj(b, rcx_obj_sub(b->prog, i));
+        break;
+    case RCX_OP_DELETE_TASK:
+        if (cmd[1] < RCX_TASKS) {
+            sched_stop_task(b, cmd[1]);
+            delete_obj(b, rcx_obj_task(b->prog, cmd[1]));
+        }
+        break;
+    case RCX_OP_DELETE_SUB:
+        if (cmd[1] < RCX_SUBS) {
+            stop_tasks_in_sub(b, cmd[1]);
+            delete_obj(b, rcx_obj_sub(b->prog, cmd[1]));
+        }
+        break;
+    case RCX_OP_POLL: {
+        /* Task locals are not pollable: firm0328 answers 0x8000 for them (reference-firmware.md). */
+        s16 v = (cmd[1] == 0 && cmd[2] >= RCX_GLOBALS && cmd[2] < RCX_VARS) ? (s16)-32768
+                                                                             : source_get(b, NULL, cmd[1], cmd[2]);
+        reply[1] = (u8)v;
+        reply[2] = (u8)((u16)v >> 8);
+        n = 2;
+        break;
+    }
+    case RCX_OP_UPLOAD_RAM: {
+        u16 addr = RCX_LE16(cmd + 1);
+        /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
+        if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
+            return 0;
+        n = upload_ram(b, addr, cmd[3], reply + 1);
+        break;
+    }
+    case RCX_OP_UPLOAD_DATALOG:
+        n = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
+        if (n == 0)
+            return 0;
+        break;
+    case RCX_OP_UNLOCK_BRICK:
+        if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0) {
+            memcpy(reply + 1, versions, sizeof versions);
+            n = sizeof versions;
+        }                          /* a wrong key gets a bare acknowledgement */
+        break;
+    case RCX_OP_BEGIN_TASK:
+    case RCX_OP_BEGIN_SUB:
+        reply[1] = begin_download(b, op == RCX_OP_BEGIN_TASK, cmd[2], RCX_LE16(cmd + 4));
+        n = 1;
+        break;
+    case RCX_OP_CONTINUE_DL:
+        reply[1] = continue_download(b, cmd, len);
+        n = 1;
+        break;
+    case RCX_OP_BOOT_MODE:
+        if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0)
+            b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
+        break;
+    case RCX_OP_BEGIN_FIRMWARE:
+    case RCX_OP_UNLOCK_FIRMWARE:
+        return 0;                  /* only the ROM's download mode answers these */
+    case RCX_OP_REMOTE:
+        engine_remote(b, RCX_LE16(cmd + 1));
+        return 0;
+    default:
+        ops_exec(b, NULL, cmd);
+        if (info->reply == 0)
+            return 0;              /* InternMessage, SendUARTData: no reply */
+        break;
+    }
+    return (u8)(1 + n);
+}

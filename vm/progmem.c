@@ -1,0 +1,90 @@
+/*
+ * Program memory: one arena holding the code of every task and subroutine of all five slots, then the datalog.
+ * Objects are packed in a fixed order (slot 0 subs 0-7, tasks 0-9, slot 1 ...), so an absent object has size 0
+ * and an address anyway, and resizing one object slides everything after it. Tasks hold their pc relative to
+ * their code object, which is why code may move under a running program.
+ */
+#include <string.h>
+#include "rcx.h"
+
+#define LOG_BYTES(b) ((u16)((b)->log_size * 3u))
+#define CODE_END(b) ((b)->obj_start[RCX_OBJS])
+
+u16 mem_free(const struct rcx *b)
+{
+    return (u16)(RCX_ARENA_SIZE - CODE_END(b) - LOG_BYTES(b));
+}
+
+u16 mem_obj_size(const struct rcx *b, u8 obj)
+{
+    return (u16)(b->obj_start[obj + 1] - b->obj_start[obj]);
+}
+
+const u8 *mem_obj_code(const struct rcx *b, u8 obj)
+{
+    return b->arena + b->obj_start[obj];
+}
+
+u8 mem_obj_runnable(const struct rcx *b, u8 obj)
+{
+    /* Code still being downloaded must not run (reference-firmware.md, "Downloads"). */
+    return mem_obj_size(b, obj) != 0 && !(b->dl.active && b->dl.obj == obj);
+}
+
+/* Keeps the first min(old, new) bytes of the object; bytes it gains are zero. */
+u8 mem_resize(struct rcx *b, u8 obj, u16 size)
+{
+    u16 old = mem_obj_size(b, obj);
+    u16 tail = b->obj_start[obj + 1];
+    u16 used = (u16)(CODE_END(b) + LOG_BYTES(b));
+    u16 i;
+
+    if (size > old) {
+        u16 grow = (u16)(size - old);
+        if (grow > mem_free(b))
+            return 0;
+        memmove(b->arena + tail + grow, b->arena + tail, (size_t)(used - tail));
+        memset(b->arena + tail, 0, grow);
+        for (i = (u16)(obj + 1); i <= RCX_OBJS; i++)
+            b->obj_start[i] = (u16)(b->obj_start[i] + grow);
+    } else if (size < old) {
+        u16 shrink = (u16)(old - size);
+        memmove(b->arena + tail - shrink, b->arena + tail, (size_t)(used - tail));
+        for (i = (u16)(obj + 1); i <= RCX_OBJS; i++)
+            b->obj_start[i] = (u16)(b->obj_start[i] - shrink);
+    }
+    return 1;
+}
+
+void mem_delete(struct rcx *b, u8 obj)
+{
+    mem_resize(b, obj, 0);
+}
+
+static u8 *put_word(u8 *p, u16 w)
+{
+    p[0] = (u8)(w >> 8); /* the memory map is the one big-endian reply (spec p. 13) */
+    p[1] = (u8)w;
+    return p + 2;
+}
+
+u8 mem_memmap(const struct rcx *b, u8 *out)
+{
+    u8 *p = out;
+    u16 base = b->arena_addr;
+    u16 log = (u16)(base + CODE_END(b));
+    u8 prog, n;
+
+    for (prog = 0; prog < RCX_PROGRAMS; prog++)
+        for (n = 0; n < RCX_SUBS; n++)
+            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_sub(prog, n)]));
+    for (prog = 0; prog < RCX_PROGRAMS; prog++)
+        for (n = 0; n < RCX_TASKS; n++)
+            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_task(prog, n)]));
+    p = put_word(p, log);
+    p = put_word(p, (u16)(log + b->log_count * 3u));
+    p = put_word(p, (u16)(log + LOG_BYTES(b)));
+    /* firm0328 hosts compute free memory as word 93 - word 92, so 93 is the end of the arena, not its last byte. */
+    p = put_word(p, (u16)(base + RCX_ARENA_SIZE));
+    return (u8)(p - out);
+}

@@ -1,0 +1,176 @@
+/*
+ * The state of one RCX brick and the byte-code machine's public interface.
+ *
+ * Everything mutable lives in one `struct rcx`: the target keeps one in .bss, the host may run several.
+ * Time, sensor samples and IR bytes enter through function calls (vm_tick, vm_run, vm_direct); the machine
+ * never reads a clock or a register itself.
+ */
+#ifndef RCX_VM_H
+#define RCX_VM_H
+
+#include "rcx_types.h"
+#include "rcx_limits.h"
+#include "rcx_opcodes.h"
+
+/* Code objects of a program slot, in arena order: subroutines 0-7, then tasks 0-9. */
+#define RCX_SLOT_OBJS (RCX_SUBS + RCX_TASKS)
+#define RCX_OBJS (RCX_PROGRAMS * RCX_SLOT_OBJS)
+#define rcx_obj_sub(prog, n) ((u8)((prog) * RCX_SLOT_OBJS + (n)))
+#define rcx_obj_task(prog, n) ((u8)((prog) * RCX_SLOT_OBJS + RCX_SUBS + (n)))
+
+#define RCX_NO_SUB 0xFF /* task executing its own body */
+
+enum rcx_task_state {
+    RCX_TASK_IDLE = 0,  /* not running */
+    RCX_TASK_RUNNING,   /* gets one byte code per scheduler pass */
+    RCX_TASK_WAITING    /* Wait in progress: costs nothing until its 10 ms tick comes */
+};
+
+struct rcx_task {
+    u8 state;
+    u8 sub;         /* subroutine being executed, or RCX_NO_SUB */
+    u16 pc;         /* offset of the next byte code within the current code object */
+    u8 has_ret;     /* the single subroutine return address is set */
+    u8 ret_sub;     /* code object to return to (a nested Gosub returns into a sub) */
+    u16 ret_pc;
+    u16 wake;       /* value of rcx.ticks10 at which a waiting task resumes */
+    u8 priority;    /* 0 most important; decides access control only */
+    u8 loop_depth;
+    u8 loop[RCX_LOOP_LEVELS];
+    s16 local[RCX_LOCALS]; /* variables 32-47 */
+    u16 events;     /* source 23: events that ended the last monitoring */
+};
+
+struct rcx_sensor {
+    u8 type;        /* source 10: 0 none, 1 touch, 2 temperature, 3 light, 4 rotation */
+    u8 mode;        /* source 11: mode in bits 5-7, slope in bits 0-4 */
+    u16 raw;        /* source 12: last 10-bit sample */
+    s16 value;      /* source 9 */
+    u8 boolean;     /* source 13 */
+};
+
+struct rcx_event {
+    u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters */
+    u8 type;        /* 0-14; RCX_EVENT_NONE when cleared */
+    u8 state;       /* source 25 */
+    s16 upper;      /* source 28 */
+    s16 lower;      /* source 29 */
+    s16 hysteresis; /* source 30 */
+    s16 duration;   /* source 31, 10 ms units */
+    s16 clicks;     /* source 27 */
+};
+
+#define RCX_EVENT_NONE 16
+#define RCX_EVENT_STATE_UNDEFINED 3
+
+/* Motor register bits: source 3 (per motor) and source 17 (global), spec pp. 6 and 8. */
+#define RCX_MOTOR_POWER 0x07
+#define RCX_MOTOR_FWD 0x08
+#define RCX_MOTOR_BRAKE 0x40
+#define RCX_MOTOR_ON 0x80
+
+struct rcx_outputs {
+    u8 motor[RCX_MOTORS];  /* on/off, brake/float, direction, power as set by the program */
+    u8 global[RCX_MOTORS]; /* connected, direction normal, max power */
+};
+
+/* A task or subroutine download in progress (BeginOfTask/BeginOfSub then ContinueDL blocks). */
+struct rcx_download {
+    u8 active;
+    u8 obj;         /* code object being written */
+    u16 expect;     /* number of the next block (1, 2, ...; the last is 0) */
+    u16 last;       /* number of the last accepted block, for re-acknowledging a repeat */
+    u16 filled;     /* bytes written so far */
+};
+
+struct rcx {
+    /* Program memory: code objects packed in obj order, then the datalog, then free space. */
+    u16 obj_start[RCX_OBJS + 1]; /* offsets; obj_start[RCX_OBJS] is the end of code */
+    u16 log_size;   /* datalog entries allocated including entry 0; 0 = no datalog */
+    u16 log_count;  /* entries used including entry 0 */
+    u16 arena_addr; /* address the arena has in the brick's RAM (memory map, UploadRam) */
+    struct rcx_download dl;
+
+    /* Variables and tasks of the selected program. */
+    u8 prog;        /* selected program slot, source 8 */
+    u8 rr;          /* next task the round-robin scheduler visits */
+    u8 running;     /* number of tasks in RCX_TASK_RUNNING */
+    s16 global[RCX_GLOBALS];
+    struct rcx_task task[RCX_TASKS];
+
+    /* Time. */
+    u8 ms;          /* milliseconds into the current 10 ms step */
+    u8 step10;      /* 10 ms steps into the current 100 ms tick (the 10 ms view of the timers) */
+    u16 ticks10;    /* free-running count of 10 ms steps; task wake times */
+    u16 timer[RCX_TIMERS]; /* 100 ms timers, 0-32767 */
+    u16 watch_ms;   /* milliseconds into the current minute */
+    u16 watch;      /* source 14: minutes since midnight */
+    u16 random;     /* generator state, never 0 */
+
+    /* Values delivered by the runtime, read by sources. */
+    u16 battery_mv; /* source 34 */
+    u8 message;     /* source 15 */
+
+    struct rcx_sensor sensor[RCX_SENSORS];
+    struct rcx_event event[RCX_EVENTS];
+    struct rcx_outputs out;
+    u8 uart[RCX_UART_BYTES]; /* source 33 */
+
+    /* Requests the runtime acts on (power, IR range, boot mode). */
+    u8 power_down_min;     /* PBPowerDownTime, 0 = never */
+    u8 idle_reset;         /* set when the power-down timer must restart */
+    u8 turn_off;           /* PBTurnOff accepted */
+    u8 tx_range;           /* PbTXPower: 0 short, 1 long */
+    u8 boot_mode;          /* GoIntoBootMode accepted */
+    u8 muted;
+
+    /* Counted uses of byte codes whose engine is not written yet (see vm/engines.h). */
+    u16 engine_pending;
+
+    u8 arena[RCX_ARENA_SIZE];
+};
+
+/* Power-on state: empty memory, variables zero, program slot 0. `arena_addr` is the arena's address on the brick. */
+void vm_init(struct rcx *b, u16 arena_addr);
+
+/* One millisecond has passed. */
+void vm_tick(struct rcx *b);
+
+/* Execute up to `budget` byte codes, one per running task in turn; returns how many were executed. */
+u16 vm_run(struct rcx *b, u16 budget);
+
+/* Execute one direct command (`len` bytes from the opcode, toggle bit as received). Writes the reply into
+ * `reply` (at least RCX_REPLY_MAX bytes) and returns its length; 0 means the command is not answered. */
+u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply);
+
+/* Tasks and programs (vm/sched.c). */
+void sched_start_task(struct rcx *b, u8 n);
+void sched_stop_task(struct rcx *b, u8 n);
+void sched_stop_all(struct rcx *b);
+void sched_select_program(struct rcx *b, u8 prog, u8 from_program);
+
+/* Sources (vm/sources.c). `t` is the task asking, NULL for a direct command (no locals). */
+s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index);
+void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value);
+s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n); /* NULL when n is not a variable here */
+void sensor_set_type(struct rcx *b, u8 n, u8 type);
+void sensor_set_mode(struct rcx *b, u8 n, u8 mode);
+
+/* Program memory (vm/progmem.c). */
+u16 mem_free(const struct rcx *b);
+u16 mem_obj_size(const struct rcx *b, u8 obj);
+const u8 *mem_obj_code(const struct rcx *b, u8 obj);
+u8 mem_obj_runnable(const struct rcx *b, u8 obj);
+u8 mem_resize(struct rcx *b, u8 obj, u16 size); /* 0 when memory is short; contents of obj are lost */
+void mem_delete(struct rcx *b, u8 obj);
+u8 mem_memmap(const struct rcx *b, u8 *out); /* the 188 data bytes of the MemMap reply */
+
+/* Datalog (vm/datalog.c). */
+void datalog_set(struct rcx *b, u16 entries);
+void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index);
+u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* 0 when the range is refused */
+
+/* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
+u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
+
+#endif

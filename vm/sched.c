@@ -1,0 +1,57 @@
+/*
+ * Tasks and program slots: start, stop, select (spec pp. 31-33, 16).
+ * Priorities do not enter here: firm0328 gives every running task one byte code per pass whatever its priority,
+ * and uses priority only for access control (reference-firmware.md, "Tasks and timing").
+ */
+#include "rcx.h"
+#include "engines.h"
+
+static void halt(struct rcx *b, struct rcx_task *t)
+{
+    if (t->state == RCX_TASK_RUNNING)
+        b->running--;
+    t->state = RCX_TASK_IDLE;
+    engine_task_ended(b, t);
+}
+
+void sched_start_task(struct rcx *b, u8 n)
+{
+    struct rcx_task *t;
+
+    if (n >= RCX_TASKS || !mem_obj_runnable(b, rcx_obj_task(b->prog, n)))
+        return; /* an empty (or half-downloaded) task slot is not started */
+    t = &b->task[n];
+    if (t->state != RCX_TASK_IDLE)
+        halt(b, t); /* a running task is restarted from the top */
+    t->sub = RCX_NO_SUB;
+    t->pc = 0;
+    t->has_ret = 0;
+    t->loop_depth = 0;
+    t->events = 0;
+    t->state = RCX_TASK_RUNNING;
+    b->running++;
+}
+
+void sched_stop_task(struct rcx *b, u8 n)
+{
+    if (n < RCX_TASKS && b->task[n].state != RCX_TASK_IDLE)
+        halt(b, &b->task[n]);
+}
+
+void sched_stop_all(struct rcx *b)
+{
+    u8 n;
+    for (n = 0; n < RCX_TASKS; n++)
+        sched_stop_task(b, n);
+}
+
+void sched_select_program(struct rcx *b, u8 prog, u8 from_program)
+{
+    if (prog >= RCX_PROGRAMS)
+        return; /* acknowledged, changes nothing (reference-firmware.md) */
+    sched_stop_all(b);
+    b->prog = prog;
+    /* From a program (or source 8 written by one) the new slot's task 0 starts: chaining, spec p. 33. */
+    if (from_program)
+        sched_start_task(b, 0);
+}
