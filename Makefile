@@ -42,7 +42,7 @@ test: host firmware
 	cd $(HOST_DIR) && ctest --output-on-failure -j $(JOBS)
 
 bench: host deps-bench
-	$(HOST_DIR)/tests/bench_vm
+	sh tests/bench/bench.sh $(HOST_DIR)/tests/bench_vm
 
 clean:
 	rm -rf $(BUILD)

@@ -67,6 +67,17 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
     t->pc = (u16)(field + n);
 
     switch (op) {
+    case RCX_OP_SET_VAR:               /* the commonest byte codes go straight to their handler */
+    case RCX_OP_SUM_VAR:
+    case RCX_OP_SUB_VAR:
+    case RCX_OP_MUL_VAR:
+    case RCX_OP_DIV_VAR:
+    case RCX_OP_SGN_VAR:
+    case RCX_OP_ABS_VAR:
+    case RCX_OP_AND_VAR:
+    case RCX_OP_OR_VAR:
+        ops_var(b, t, ins);
+        break;
     case RCX_OP_SJUMP:
         target = field + dist_sm8(ins + 1);
         break;
@@ -132,7 +143,7 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */
         t->wake = (u16)(b->ticks10 + (u16)value);
         t->state = RCX_TASK_WAITING;
-        b->running--;
+        b->runmask &= (u16)~(1u << (t - b->task));
         break;
     case RCX_OP_SENTER_EVENT:
     case RCX_OP_LENTER_EVENT: {
@@ -191,16 +202,19 @@ u16 vm_run(struct rcx *b, u16 budget)
 {
     u16 done = 0;
     u8 n = b->rr;
-    u8 idle = 0; /* consecutive slots visited without work: guards against a stale running count */
 
-    while (done < budget && b->running) {
-        if (b->task[n].state == RCX_TASK_RUNNING) {
-            run_one(b, n);
-            done++;
-            idle = 0;
-        } else if (++idle > RCX_TASKS) {
-            break;
+    while (done < budget && b->runmask) {
+        u16 m = (u16)(b->runmask >> n);
+        if (!m) {                      /* wrap around: the next pass starts at task 0 */
+            n = 0;
+            m = b->runmask;
         }
+        while (!(m & 1)) {
+            m >>= 1;
+            n++;
+        }
+        run_one(b, n);
+        done++;
         if (++n >= RCX_TASKS)
             n = 0;
     }

@@ -72,6 +72,14 @@ static u8 event_type_valid(u8 type)
     return type <= 3 || (type >= 7 && type <= 12) || type == 14 || type == 16;
 }
 
+void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
+{
+    s16 value = source_get(b, t, ins[2], RCX_LE16(ins + 3));
+    s16 *var = var_ref(b, t, ins[1]);
+    if (var)
+        *var = arith((u8)(ins[0] & ~RCX_TOGGLE), *var, value);
+}
+
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     u8 op = (u8)(ins[0] & ~RCX_TOGGLE);
@@ -230,9 +238,7 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
     case RCX_OP_ABS_VAR:
     case RCX_OP_AND_VAR:
     case RCX_OP_OR_VAR:
-        value = source_get(b, t, ins[2], RCX_LE16(ins + 3));
-        if ((var = var_ref(b, t, a)) != NULL)
-            *var = arith(op, *var, value);
+        ops_var(b, t, ins);
         break;
     case RCX_OP_SET_SOURCE:
         /* Source numbers use bits 0-5 of their byte (spec p. 86). */

@@ -94,7 +94,7 @@ struct rcx {
     /* Variables and tasks of the selected program. */
     u8 prog;        /* selected program slot, source 8 */
     u8 rr;          /* next task the round-robin scheduler visits */
-    u8 running;     /* number of tasks in RCX_TASK_RUNNING */
+    u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
     s16 global[RCX_GLOBALS];
     struct rcx_task task[RCX_TASKS];
 
@@ -172,5 +172,6 @@ u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* 0 when
 
 /* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
+void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
 
 #endif

@@ -8,8 +8,7 @@
 
 static void halt(struct rcx *b, struct rcx_task *t)
 {
-    if (t->state == RCX_TASK_RUNNING)
-        b->running--;
+    b->runmask &= (u16)~(1u << (t - b->task));
     t->state = RCX_TASK_IDLE;
     engine_task_ended(b, t);
 }
@@ -29,7 +28,7 @@ void sched_start_task(struct rcx *b, u8 n)
     t->loop_depth = 0;
     t->events = 0;
     t->state = RCX_TASK_RUNNING;
-    b->running++;
+    b->runmask |= (u16)(1u << n);
 }
 
 void sched_stop_task(struct rcx *b, u8 n)

@@ -57,6 +57,8 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const s16 *v;
 
+    if (src == RCX_SRC_CONST)          /* by far the commonest source: no table look-up */
+        return (s16)index;
     if (src >= RCX_SOURCE_COUNT || !rcx_sources[src].exists || index > rcx_sources[src].max)
         return 0;
     switch (src) {

@@ -30,7 +30,7 @@ static void wake_waiting(struct rcx *b)
         struct rcx_task *t = &b->task[n];
         if (t->state == RCX_TASK_WAITING && (s16)(u16)(b->ticks10 - t->wake) >= 0) {
             t->state = RCX_TASK_RUNNING;
-            b->running++;
+            b->runmask |= (u16)(1u << n);
         }
     }
 }
