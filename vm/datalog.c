@@ -2,7 +2,7 @@
  * The datalog (spec pp. 54-55, 84): entries of 3 bytes at the end of program memory. Entry 0 is the log's own
  * header, type 0xFF, value = entries used including itself; data points follow from entry 1.
  */
-#include <string.h>
+#include "rcx_string.h"
 #include "rcx.h"
 
 #define LOG_ADDR(b) ((b)->arena + (b)->obj_start[RCX_OBJS])

@@ -4,7 +4,7 @@
  * and an address anyway, and resizing one object slides everything after it. Tasks hold their pc relative to
  * their code object, which is why code may move under a running program.
  */
-#include <string.h>
+#include "rcx_string.h"
 #include "rcx.h"
 
 #define LOG_BYTES(b) ((u16)((b)->log_size * 3u))

@@ -1,5 +1,5 @@
 /* Power-on state and the passage of time. */
-#include <string.h>
+#include "rcx_string.h"
 #include "rcx.h"
 
 void vm_init(struct rcx *b, u16 arena_addr)
