@@ -54,13 +54,13 @@ void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
     put_entry(b, 0, 0xFF, b->log_count);
 }
 
-u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
+s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
 {
     u16 used = b->log_count ? b->log_count : 1; /* without a log, entry 0 still reports an empty one */
     u16 i;
 
-    if (count > (RCX_REPLY_MAX - 1) / 3 || start >= used || count > used - start)
-        return 0;
+    if (count > (RCX_REPLY_MAX - 1) / 3 || start > used || count > used - start)
+        return -1;
     for (i = 0; i < count; i++) {
         if (b->log_count) {
             memcpy(out + i * 3u, LOG_ADDR(b) + (start + i) * 3u, 3);
@@ -70,5 +70,5 @@ u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
             out[2] = 0;
         }
     }
-    return (u8)(count * 3u);
+    return (s16)(count * 3u);
 }

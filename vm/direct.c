@@ -58,20 +58,14 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     return DL_OK;
 }
 
-/* 0x45: seq(2) len(2) data(len) checksum(1). Blocks are numbered 1, 2, ..., n, 0. */
-static u8 continue_download(struct rcx *b, const u8 *cmd, u8 len)
+/* 0x45: seq(2) len(2) data(len) checksum(1), already checked to be complete. Blocks are numbered 1, ..., n, 0. */
+static u8 continue_download(struct rcx *b, const u8 *cmd)
 {
-    u16 seq, count, i;
+    u16 seq = RCX_LE16(cmd + 1), count = RCX_LE16(cmd + 3), i;
     u8 sum = 0;
 
     if (!b->dl.active)
         return DL_NOT_ACTIVE;
-    if (len < 6)
-        return DL_BLOCK_ERROR;
-    seq = RCX_LE16(cmd + 1);
-    count = RCX_LE16(cmd + 3);
-    if (count > (u16)(len - 6))
-        return DL_BLOCK_ERROR;
     for (i = 0; i < count; i++)
         sum = (u8)(sum + cmd[5 + i]);
     if (sum != cmd[5 + count])
@@ -162,11 +156,13 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         n = upload_ram(b, addr, cmd[3], reply + 1);
         break;
     }
-    case RCX_OP_UPLOAD_DATALOG:
-        n = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
-        if (n == 0)
+    case RCX_OP_UPLOAD_DATALOG: {
+        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
+        if (bytes < 0)
             return 0;
+        n = (u8)bytes;
         break;
+    }
     case RCX_OP_UNLOCK_BRICK:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0) {
             memcpy(reply + 1, versions, sizeof versions);
@@ -179,7 +175,10 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         n = 1;
         break;
     case RCX_OP_CONTINUE_DL:
-        reply[1] = continue_download(b, cmd, len);
+        /* A block shorter than its header announces is a truncated packet: no reply, like any other. */
+        if (len < 6 || RCX_LE16(cmd + 3) > (u16)(len - 6))
+            return 0;
+        reply[1] = continue_download(b, cmd);
         n = 1;
         break;
     case RCX_OP_BOOT_MODE:

@@ -168,7 +168,7 @@ u8 mem_memmap(const struct rcx *b, u8 *out); /* the 188 data bytes of the MemMap
 /* Datalog (vm/datalog.c). */
 void datalog_set(struct rcx *b, u16 entries);
 void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index);
-u8 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* 0 when the range is refused */
+s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes written, -1 when refused */
 
 /* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
