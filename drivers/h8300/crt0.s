@@ -1,0 +1,52 @@
+; OpenRCX start-up code. The linker script puts section .start first, so _start is the byte at 0x8000
+; that the ROM calls (with jsr) once a download has been unlocked.
+;
+; State at entry (rcx-hardware.md 2.3 and 6): interrupts enabled, SP in on-chip RAM with a return
+; address into the ROM on top, ROM handlers still in some RAM vectors, IRQ0 enabled. The image was
+; loaded in place, so .data needs no copy; .bss holds garbage and is cleared here.
+
+	.section .start,"x"
+	.global	_start
+	.global	_rcx_knock
+	.global	_rcx_irq_ignore
+
+_start:
+	orc	#0x80,ccr		; mask interrupts until the drivers are ready
+	mov.w	#_rcx_stack_top,r7	; own stack at the top of on-chip RAM; never return to the ROM
+	sub.b	r0l,r0l
+	mov.b	r0l,@0xc7:8		; IER (FFC7) = 0: IRQ0-2 off
+
+	; Every RAM interrupt vector (FD92-FDBE) -> a bare rts, so that no ROM handler runs again.
+	mov.w	#_rcx_ramvec_start,r0
+	mov.w	#_rcx_irq_ignore,r1
+	mov.w	#_rcx_ramvec_end,r2
+1:	mov.w	r1,@r0
+	adds	#2,r0
+	cmp.w	r2,r0
+	bne	1b
+
+	; Clear .bss; the linker script aligns both ends to words.
+	mov.w	#_rcx_bss_start,r0
+	mov.w	#_rcx_bss_end,r2
+	sub.w	r1,r1
+	bra	3f
+2:	mov.w	r1,@r0
+	adds	#2,r0
+3:	cmp.w	r2,r0
+	bne	2b
+
+	jsr	@_main
+4:	orc	#0x80,ccr		; main does not return; if it did, stop quietly
+	bra	4b
+
+; Target of unused RAM vectors. The ROM's trampoline saved r6, calls the vector with jsr and ends
+; in rte, so a handler is a subroutine.
+_rcx_irq_ignore:
+	rts
+
+; The ROM refuses to start an image that does not contain this text inside 0x8000-0xCBFF.
+	.align	1
+_rcx_knock:
+	.ascii	"Do you byte, when I knock?"
+	.byte	0
+	.align	1
