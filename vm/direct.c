@@ -4,7 +4,6 @@
  */
 #include "rcx_string.h"
 #include "rcx.h"
-#include "engines.h"
 
 static const u8 unlock_key[5] = { 1, 3, 5, 7, 11 };
 /* ROM 3.1 and firmware 3.28 ("3.2.8") so that host tools treat the brick as firm0328 (reference-firmware.md). */
@@ -189,7 +188,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case RCX_OP_UNLOCK_FIRMWARE:
         return 0;                  /* only the ROM's download mode answers these */
     case RCX_OP_REMOTE:
-        engine_remote(b, RCX_LE16(cmd + 1));
+        remote_command(b, RCX_LE16(cmd + 1));
         return 0;
     default:
         ops_exec(b, NULL, cmd);

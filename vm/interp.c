@@ -6,7 +6,6 @@
  * end of its code object, or a jump that lands outside it, stops the task instead of reading foreign memory.
  */
 #include "rcx.h"
-#include "engines.h"
 
 /* Relations of SCheckDo/LCheckDo (spec p. 93): the jump is taken when the comparison FAILS. */
 static u8 holds(u8 rel, s16 a, s16 b)
@@ -27,7 +26,7 @@ static void stop(struct rcx *b, struct rcx_task *t)
 /* EndOfSub, explicit or by running off the end of a subroutine (nqc does not append 0xF6). */
 static void end_of_sub(struct rcx *b, struct rcx_task *t)
 {
-    engine_sub_returned(b, t);
+    events_sub_returned(b, t);
     if (!t->has_ret) {
         stop(b, t); /* spec p. 26: no return address means something has gone wrong */
         return;
@@ -149,7 +148,7 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
     case RCX_OP_LENTER_EVENT: {
         s32 to = field + 3 + (op == RCX_OP_SENTER_EVENT ? dist_sm8(ins + 4) : dist_sm16(ins + 4));
         if (to >= 0 && to <= size)
-            engine_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), (u16)to);
+            events_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), (u16)to);
         else
             stop(b, t);
         break;
@@ -157,16 +156,16 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
     case RCX_OP_ENTER_ACCESS: {
         s32 to = field + 1 + dist_sm16(ins + 2);
         if (to >= 0 && to <= size)
-            engine_access_enter(b, t, ins[1], (u16)to);
+            access_enter(b, t, ins[1], (u16)to);
         else
             stop(b, t);
         break;
     }
     case RCX_OP_EXIT_EVENT:
-        engine_monitor_exit(b, t);
+        events_monitor_exit(b, t);
         break;
     case RCX_OP_EXIT_ACCESS:
-        engine_access_exit(b, t);
+        access_exit(b, t);
         break;
     default:
         if (rcx_opinfo[rcx_op_index(op)].avail & RCX_PROGRAM)

@@ -5,7 +5,6 @@
  */
 #include "rcx.h"
 #include "sources.h"
-#include "engines.h"
 
 /* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). */
 static s16 arith(u8 op, s16 a, s16 v)
@@ -52,7 +51,7 @@ static void set_motors(struct rcx *b, u8 *reg, u8 arg, u8 direction)
                 reg[i] |= RCX_MOTOR_ON;
         }
     }
-    engine_outputs_changed(b);
+    outputs_changed(b);
 }
 
 static void set_power(struct rcx *b, u8 *reg, u8 motors, s16 power)
@@ -63,7 +62,7 @@ static void set_power(struct rcx *b, u8 *reg, u8 motors, s16 power)
     for (i = 0; i < RCX_MOTORS; i++)
         if (motors & (1u << i))
             reg[i] = (u8)((reg[i] & ~RCX_MOTOR_POWER) | power);
-    engine_outputs_changed(b);
+    outputs_changed(b);
 }
 
 static u8 event_type_valid(u8 type)
@@ -99,21 +98,20 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
             b->turn_off = 1;
         break;
     case RCX_OP_CLEAR_SOUND:
-        engine_sound_clear(b);
+        sound_clear(b);
         break;
     case RCX_OP_CLEAR_MESSAGE:
         b->message = 0;
-        engine_message_changed(b); /* firm0328 raises a mailbox event here too */
+        events_message_changed(b); /* firm0328 raises a mailbox event here too */
         break;
     case RCX_OP_MUTE:
-        b->muted = 1;
-        engine_sound_clear(b);
+        sound_mute(b, 1);
         break;
     case RCX_OP_UNMUTE:
-        b->muted = 0;
+        sound_mute(b, 0);
         break;
     case RCX_OP_CLEAR_ALL_EVENTS:
-        engine_events_clear(b);
+        events_clear_all(b);
         break;
     case RCX_OP_ON_OFF_FLOAT:
         set_motors(b, b->out.motor, a, 0);
@@ -139,14 +137,14 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
         break;
     case RCX_OP_PLAY_SYSTEM_SOUND:
         if (a <= 5)
-            engine_sound_system(b, a);
+            sound_system(b, a);
         break;
     case RCX_OP_PLAY_TONE:
-        engine_sound_tone(b, RCX_LE16(ins + 1), ins[3]);
+        sound_tone(b, RCX_LE16(ins + 1), ins[3]);
         break;
     case RCX_OP_PLAY_TONE_VAR:
         if ((var = var_ref(b, t, a)) != NULL)
-            engine_sound_tone(b, (u16)*var, ins[2]);
+            sound_tone(b, (u16)*var, ins[2]);
         break;
     case RCX_OP_START_TASK:
         sched_start_task(b, a);
@@ -166,10 +164,7 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
         b->idle_reset = 1;
         break;
     case RCX_OP_CLEAR_SENSOR:
-        if (a < RCX_SENSORS) {
-            b->sensor[a].value = 0;
-            engine_sensor_changed(b, a);
-        }
+        sensor_clear(b, a);
         break;
     case RCX_OP_INC_COUNTER:
     case RCX_OP_DEC_COUNTER:
@@ -179,18 +174,18 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
                 b->global[a] = 0;
             else
                 b->global[a] = (s16)(u16)((u16)b->global[a] + (op == RCX_OP_INC_COUNTER ? 1u : 0xFFFFu));
-            engine_counter_changed(b, a);
+            events_counter_changed(b, a);
         }
         break;
     case RCX_OP_MESSAGE:
         b->message = a;
-        engine_message_changed(b);
+        events_message_changed(b);
         break;
     case RCX_OP_SET_WATCH:
         if (a < 24 && ins[2] < 60) {
             b->watch = (u16)(a * 60u + ins[2]);
             b->watch_ms = 0;
-            engine_display_view(b, 0); /* the watch is selected (spec p. 51) */
+            display_view(b, 0); /* the watch is selected (spec p. 51) */
         }
         break;
     case RCX_OP_SET_SENSOR_TYPE:
@@ -207,27 +202,27 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
         break;
     case RCX_OP_SEND_UART:
         if ((u16)a + ins[2] <= 16) /* start + size <= 16 (spec p. 60) */
-            engine_send_uart(b, a, ins[2]);
+            remote_send_uart(b, a, ins[2]);
         break;
     case RCX_OP_DIRECT_EVENT:
-        engine_event_raise(b, (u16)source_get(b, t, a, RCX_LE16(ins + 2)));
+        events_raise(b, (u16)source_get(b, t, a, RCX_LE16(ins + 2)));
         break;
     case RCX_OP_SELECT_DISPLAY:
         value = source_get(b, t, a, RCX_LE16(ins + 2));
         if (value >= 0 && value <= 7)
-            engine_display_view(b, (u8)value);
+            display_view(b, (u8)value);
         break;
     case RCX_OP_VIEW_SOURCE:
         if (ins[2] <= 3)
-            engine_display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
+            display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
         break;
     case RCX_OP_SET_EVENT:
         if (a < RCX_EVENTS && ins[2] <= 10 && event_type_valid(ins[3]))
-            engine_event_set(b, a, ins[2], ins[3]);
+            events_set(b, a, ins[2], ins[3]);
         break;
     case RCX_OP_CALIBRATE_EVENT:
         if (a < RCX_EVENTS)
-            engine_event_calibrate(b, a, ins[2], ins[3], ins[4]);
+            events_calibrate(b, a, ins[2], ins[3], ins[4]);
         break;
     case RCX_OP_SET_VAR:
     case RCX_OP_SUM_VAR:
@@ -250,7 +245,7 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
         break;
     case RCX_OP_SEND_MESSAGE:
         if (t)
-            engine_send_message(b, (u8)source_get(b, t, a, ins[2]));
+            remote_send_message(b, (u8)source_get(b, t, a, ins[2]));
         break;
     default:
         return 0;

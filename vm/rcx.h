@@ -11,6 +11,12 @@
 #include "rcx_types.h"
 #include "rcx_limits.h"
 #include "rcx_opcodes.h"
+#include "sensors.h"
+#include "outputs.h"
+#include "sound.h"
+#include "display.h"
+#include "events.h"
+#include "remote.h"
 
 /* Code objects of a program slot, in arena order: subroutines 0-7, then tasks 0-9. */
 #define RCX_SLOT_OBJS (RCX_SUBS + RCX_TASKS)
@@ -38,40 +44,7 @@ struct rcx_task {
     u8 loop_depth;
     u8 loop[RCX_LOOP_LEVELS];
     s16 local[RCX_LOCALS]; /* variables 32-47 */
-    u16 events;     /* source 23: events that ended the last monitoring */
-};
-
-struct rcx_sensor {
-    u8 type;        /* source 10: 0 none, 1 touch, 2 temperature, 3 light, 4 rotation */
-    u8 mode;        /* source 11: mode in bits 5-7, slope in bits 0-4 */
-    u16 raw;        /* source 12: last 10-bit sample */
-    s16 value;      /* source 9 */
-    u8 boolean;     /* source 13 */
-};
-
-struct rcx_event {
-    u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters */
-    u8 type;        /* 0-14; RCX_EVENT_NONE when cleared */
-    u8 state;       /* source 25 */
-    s16 upper;      /* source 28 */
-    s16 lower;      /* source 29 */
-    s16 hysteresis; /* source 30 */
-    s16 duration;   /* source 31, 10 ms units */
-    s16 clicks;     /* source 27 */
-};
-
-#define RCX_EVENT_NONE 16
-#define RCX_EVENT_STATE_UNDEFINED 3
-
-/* Motor register bits: source 3 (per motor) and source 17 (global), spec pp. 6 and 8. */
-#define RCX_MOTOR_POWER 0x07
-#define RCX_MOTOR_FWD 0x08
-#define RCX_MOTOR_BRAKE 0x40
-#define RCX_MOTOR_ON 0x80
-
-struct rcx_outputs {
-    u8 motor[RCX_MOTORS];  /* on/off, brake/float, direction, power as set by the program */
-    u8 global[RCX_MOTORS]; /* connected, direction normal, max power */
+    struct rcx_task_events ev; /* monitoring and access control */
 };
 
 /* A task or subroutine download in progress (BeginOfTask/BeginOfSub then ContinueDL blocks). */
@@ -114,6 +87,9 @@ struct rcx {
     struct rcx_sensor sensor[RCX_SENSORS];
     struct rcx_event event[RCX_EVENTS];
     struct rcx_outputs out;
+    struct rcx_sound sound;
+    struct rcx_display display;
+    struct rcx_remote remote;
     u8 uart[RCX_UART_BYTES]; /* source 33 */
 
     /* Requests the runtime acts on (power, IR range, boot mode). */
@@ -122,10 +98,12 @@ struct rcx {
     u8 turn_off;           /* PBTurnOff accepted */
     u8 tx_range;           /* PbTXPower: 0 short, 1 long */
     u8 boot_mode;          /* GoIntoBootMode accepted */
-    u8 muted;
 
-    /* Counted uses of byte codes whose engine is not written yet (see vm/engines.h). */
+    /* Counted uses of byte codes whose engine is not written yet: each placeholder engine counts here, so a
+     * test can tell that a byte code reached its engine and that its effect is still owed. */
     u16 engine_pending;
+
+    void *port;     /* the hardware port's own data for this brick (host simulator); the machine never uses it */
 
     u8 arena[RCX_ARENA_SIZE];
 };
@@ -136,7 +114,8 @@ void vm_init(struct rcx *b, u16 arena_addr);
 /* One millisecond has passed. */
 void vm_tick(struct rcx *b);
 
-/* Execute up to `budget` byte codes, one per running task in turn; returns how many were executed. */
+/* Execute up to `budget` byte codes, one per running task in turn; returns how many were executed (a task reaching
+ * the end of its code counts as one). */
 u16 vm_run(struct rcx *b, u16 budget);
 
 /* Execute one direct command (`len` bytes from the opcode, toggle bit as received). Writes the reply into
@@ -153,8 +132,6 @@ void sched_select_program(struct rcx *b, u8 prog, u8 from_program);
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index);
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value);
 s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n); /* NULL when n is not a variable here */
-void sensor_set_type(struct rcx *b, u8 n, u8 type);
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode);
 
 /* Program memory (vm/progmem.c). */
 u16 mem_free(const struct rcx *b);

@@ -4,13 +4,12 @@
  * and uses priority only for access control (reference-firmware.md, "Tasks and timing").
  */
 #include "rcx.h"
-#include "engines.h"
 
 static void halt(struct rcx *b, struct rcx_task *t)
 {
     b->runmask &= (u16)~(1u << (t - b->task));
     t->state = RCX_TASK_IDLE;
-    engine_task_ended(b, t);
+    events_task_ended(b, t);
 }
 
 void sched_start_task(struct rcx *b, u8 n)
@@ -26,7 +25,7 @@ void sched_start_task(struct rcx *b, u8 n)
     t->pc = 0;
     t->has_ret = 0;
     t->loop_depth = 0;
-    t->events = 0;
+    t->ev.events = 0;
     t->state = RCX_TASK_RUNNING;
     b->runmask |= (u16)(1u << n);
 }

@@ -4,7 +4,6 @@
  */
 #include "rcx.h"
 #include "sources.h"
-#include "engines.h"
 
 #define R 0
 #define RW 1
@@ -36,23 +35,6 @@ static u16 next_random(struct rcx *b)
     return x;
 }
 
-/* Motor status as firm0328 reports it: the effective output after global invert, max power and disconnect. */
-static u8 motor_status(const struct rcx *b, u8 i)
-{
-    u8 m = b->out.motor[i], g = b->out.global[i];
-    u8 power = (u8)(m & RCX_MOTOR_POWER);
-    u8 status;
-
-    if (power > (g & RCX_MOTOR_POWER))
-        power = (u8)(g & RCX_MOTOR_POWER);
-    status = (u8)((m & (RCX_MOTOR_ON | RCX_MOTOR_BRAKE)) | power);
-    if ((m ^ g ^ RCX_MOTOR_FWD) & RCX_MOTOR_FWD) /* forward xor globally reversed */
-        status |= RCX_MOTOR_FWD;
-    if (!(g & RCX_MOTOR_ON) && (m & RCX_MOTOR_ON))
-        status = (u8)((status & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
-    return status;
-}
-
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const s16 *v;
@@ -70,7 +52,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     case RCX_SRC_CONST:
         return (s16)index;
     case RCX_SRC_MOTOR:
-        return motor_status(b, (u8)index);
+        return outputs_status(b, (u8)index);
     case RCX_SRC_RANDOM:
         /* 0..index inclusive; a range below 1 gives 0. */
         if ((s16)index <= 0)
@@ -93,12 +75,11 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     case RCX_SRC_MESSAGE:
         return b->message;
     case RCX_SRC_GLOBAL_MOTOR:
-        /* firm0328 always sets bits 4-5 here (reference-firmware.md); bit 6 is not part of this layout. */
-        return (s16)((b->out.global[index] & 0x8F) | 0x30);
+        return outputs_global_status(b, (u8)index);
     case RCX_SRC_COUNTER:
         return b->global[index];
     case RCX_SRC_TASK_EVENTS:
-        return (s16)b->task[index].events;
+        return (s16)b->task[index].ev.events;
     case RCX_SRC_EVENT_STATE:
         return b->event[index].state;
     case RCX_SRC_TIMER10:
@@ -128,29 +109,6 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return v ? *v : 0;
     }
     return 0;
-}
-
-/* Default mode for each sensor type (spec p. 52): raw, boolean, Celsius, percent, angle. */
-static const u8 default_mode[5] = { 0x00, 0x20, 0xA0, 0x80, 0xE0 };
-
-void sensor_set_type(struct rcx *b, u8 n, u8 type)
-{
-    if (n >= RCX_SENSORS || type >= sizeof default_mode)
-        return;
-    b->sensor[n].type = type;
-    b->sensor[n].mode = default_mode[type];
-    b->sensor[n].value = 0;
-    b->sensor[n].boolean = 0;
-    engine_sensor_changed(b, n);
-}
-
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
-{
-    if (n >= RCX_SENSORS)
-        return;
-    b->sensor[n].mode = mode;
-    b->sensor[n].value = 0;
-    engine_sensor_changed(b, n);
 }
 
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
@@ -193,11 +151,11 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         break;
     case RCX_SRC_MESSAGE:
         b->message = (u8)value;
-        engine_message_changed(b);
+        events_message_changed(b);
         break;
     case RCX_SRC_COUNTER:
         b->global[index] = value;
-        engine_counter_changed(b, (u8)index);
+        events_counter_changed(b, (u8)index);
         break;
     case RCX_SRC_TIMER10:
         if (value >= 0)

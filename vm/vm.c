@@ -4,23 +4,13 @@
 
 void vm_init(struct rcx *b, u16 arena_addr)
 {
-    u8 i;
-
     memset(b, 0, sizeof *b);
     b->arena_addr = arena_addr;
     b->random = 0xACE1;
     b->battery_mv = 9000;
     b->power_down_min = 15;
-    for (i = 0; i < RCX_EVENTS; i++) {
-        b->event[i].type = RCX_EVENT_NONE;
-        b->event[i].state = RCX_EVENT_STATE_UNDEFINED;
-        b->event[i].duration = 15; /* 150 ms, the click default of spec p. 71 */
-    }
-    /* Turning the RCX on: all motors forward, float, full power (spec p. 98); globally on, normal, max 7. */
-    for (i = 0; i < RCX_MOTORS; i++) {
-        b->out.motor[i] = RCX_MOTOR_FWD | 7;
-        b->out.global[i] = RCX_MOTOR_ON | RCX_MOTOR_FWD | 7;
-    }
+    events_init(b);
+    outputs_init(b); /* turning the RCX on (spec p. 98) */
 }
 
 static void wake_waiting(struct rcx *b)
@@ -39,6 +29,10 @@ void vm_tick(struct rcx *b)
 {
     u8 i;
 
+    outputs_tick(b);
+    sound_tick(b);
+    display_tick(b);
+    events_tick(b);
     if (++b->watch_ms >= 60000u) {
         b->watch_ms = 0;
         if (++b->watch >= 24 * 60)

@@ -1,0 +1,35 @@
+/*
+ * Outputs (spec pp. 6, 8, 27, 38, 42-43, 64, 72, 98-99; sources 3 and 17): the motor registers the byte codes set,
+ * and the effective output handed to hal_motor().
+ */
+#ifndef RCX_OUTPUTS_H
+#define RCX_OUTPUTS_H
+
+#include "rcx_types.h"
+
+struct rcx;
+
+/* Motor register bits: source 3 (per motor) and source 17 (global), spec pp. 6 and 8. */
+#define RCX_MOTOR_POWER 0x07
+#define RCX_MOTOR_FWD 0x08
+#define RCX_MOTOR_BRAKE 0x40
+#define RCX_MOTOR_ON 0x80
+
+struct rcx_outputs {
+    u8 motor[3];  /* on/off, brake/float, direction, power as set by the program */
+    u8 global[3]; /* connected, direction normal, max power */
+};
+
+void outputs_init(struct rcx *b);          /* power-on: forward, float, full power (spec p. 98) */
+void outputs_changed(struct rcx *b);       /* registers were written: recompute and apply */
+void outputs_tick(struct rcx *b);          /* every 1 ms */
+u8 outputs_status(const struct rcx *b, u8 motor);  /* source 3 */
+u8 outputs_global_status(const struct rcx *b, u8 motor); /* source 17 */
+
+/* The motor scheme of spec p. 98, for the user interface and the remote control. */
+void outputs_program_start(struct rcx *b); /* Run pressed: forward, brake, max power */
+void outputs_program_stop(struct rcx *b);  /* Run pressed again, or program changed: brake */
+void outputs_remote(struct rcx *b, u8 fwd_mask, u8 rev_mask); /* remote motor buttons held (0, 0 = released) */
+void outputs_revoked(struct rcx *b, u8 resources); /* access lost: affected motors brake */
+
+#endif
