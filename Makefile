@@ -10,7 +10,7 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host firmware test bench deps-host deps-target deps-bench clean
+.PHONY: all host firmware test bench run size deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -41,8 +41,17 @@ firmware: deps-target
 test: host firmware
 	cd $(HOST_DIR) && ctest --output-on-failure -j $(JOBS)
 
-bench: host deps-bench
-	sh tests/bench/bench.sh $(HOST_DIR)/tests/bench_vm
+# Every tests/bench/*.sh prints its own figures; each gets the host and target build folders.
+bench: host firmware deps-bench
+	@for s in tests/bench/*.sh; do sh "$$s" $(HOST_DIR) $(TARGET_DIR) || exit 1; done
+
+# The virtual RCX demo: a sample program downloaded by nqc over the pseudo-terminal, its trace on the terminal.
+run: host
+	sh host_sim/demo.sh $(HOST_DIR)
+
+# Image size, free program memory and ROM checksum of the firmware.
+size: firmware
+	sh drivers/size.sh $(TARGET_DIR)
 
 clean:
 	rm -rf $(BUILD)

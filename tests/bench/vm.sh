@@ -1,7 +1,7 @@
 #!/bin/sh
 # `make bench`: interpreter throughput, and instructions per byte code under callgrind when valgrind is present.
 set -e
-bin="$1"
+bin="$1/tests/bench_vm"
 "$bin"
 if command -v valgrind >/dev/null 2>&1; then
     n=1000000

@@ -1,0 +1,44 @@
+/*
+ * The runtime around the byte-code machine: a whole brick as the firmware (or one virtual RCX) runs it.
+ *
+ * Inputs arrive through the rt_* calls below (from drivers/ on the brick, from host_sim/ on the host), outputs leave
+ * through hal.h. Nothing here may be called from an interrupt handler: drivers buffer bytes and count ticks in their
+ * interrupts, and the main loop feeds them in.
+ */
+#ifndef RCX_RUNTIME_H
+#define RCX_RUNTIME_H
+
+#include "rcx.h"
+#include "ir.h"
+#include "ui.h"
+
+struct rcx_brick {
+    struct rcx vm;          /* first, so that a hal call's `struct rcx *` is also the brick (rt_brick_of) */
+    struct rcx_ir ir;       /* IR packet layer: receiver, toggle handling, replies, outgoing requests */
+    struct rcx_ui ui;       /* buttons, program selection, power-down timer, low battery, standby */
+};
+
+#define rt_brick_of(b) ((struct rcx_brick *)(void *)(b))
+
+/* Power-on: machine, IR link and user interface in their initial state. */
+void rt_init(struct rcx_brick *k, u16 arena_addr);
+
+/* One millisecond has passed (call once per elapsed ms, from the main loop). */
+void rt_tick(struct rcx_brick *k);
+
+/* Main-loop work: complete packets are executed and answered, transmit requests sent, then up to `budget` byte
+ * codes run. Returns the byte codes executed. */
+u16 rt_run(struct rcx_brick *k, u16 budget);
+
+/* A byte received on the IR link; `error` non-zero for a parity/framing/overrun error. */
+void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
+
+/* A 10-bit A/D sample of input 0-2, every 1 ms; the battery in millivolts whenever measured. */
+void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
+void rt_battery(struct rcx_brick *k, u16 millivolts);
+
+/* A debounced button edge. */
+enum rt_button { RT_BUTTON_ONOFF = 0, RT_BUTTON_RUN, RT_BUTTON_VIEW, RT_BUTTON_PRGM };
+void rt_button(struct rcx_brick *k, u8 button, u8 down);
+
+#endif
