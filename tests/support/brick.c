@@ -1,18 +1,22 @@
 #include <stdlib.h>
 #include <string.h>
 #include "brick.h"
+#include "fake_hal.h"
 
 struct rcx *brick_new(void)
 {
     struct rcx *b = malloc(sizeof *b);
-    if (!b)
+    struct fake_hal *h = calloc(1, sizeof *h);
+    if (!b || !h)
         abort();
     vm_init(b, TEST_ARENA_ADDR);
+    b->port = h; /* vm_init clears the whole struct, so the port is attached after it */
     return b;
 }
 
 void brick_free(struct rcx *b)
 {
+    free(b->port);
     free(b);
 }
 

@@ -7,7 +7,8 @@
 /* Arena address used by host tests; any value from 0x8000 keeps UploadRam and the memory map realistic. */
 #define TEST_ARENA_ADDR 0x9000u
 
-/* A freshly powered-on brick (heap-allocated: the struct holds the whole program memory). */
+/* A freshly powered-on brick (heap-allocated: the struct holds the whole program memory), with a recording
+ * hal.h behind it (fake_hal.h, fake_hal_of(b)). */
 struct rcx *brick_new(void);
 void brick_free(struct rcx *b);
 
