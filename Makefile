@@ -2,15 +2,17 @@
 # `make bench` prints the benchmarks.  Each target first installs the Debian packages it needs when missing.
 BUILD      ?= build
 HOST_DIR   := $(BUILD)/host
+ASAN_DIR   := $(BUILD)/asan
 TARGET_DIR := $(BUILD)/h8300
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
 # command-or-file:debian-package
-HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc
+HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc \
+               /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host firmware test bench run size deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test bench run size deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -38,8 +40,14 @@ firmware: deps-target
 	cmake -S . -B $(TARGET_DIR) -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/linker/h8300-hms.cmake >/dev/null
 	cmake --build $(TARGET_DIR) -j $(JOBS)
 
-test: host firmware
+# The suite runs twice: as built for speed, and under AddressSanitizer + UndefinedBehaviorSanitizer (clang).
+test: host firmware asan
 	cd $(HOST_DIR) && ctest --output-on-failure -j $(JOBS)
+	cd $(ASAN_DIR) && ctest --output-on-failure -j $(JOBS)
+
+asan: deps-host
+	CC=clang cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DRCX_SANITIZE=ON >/dev/null
+	cmake --build $(ASAN_DIR) -j $(JOBS)
 
 # Every tests/bench/*.sh prints its own figures; each gets the host and target build folders.
 bench: host firmware deps-bench

@@ -82,7 +82,8 @@ void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     u8 op = (u8)(ins[0] & ~RCX_TOGGLE);
-    u8 a = ins[1];
+    /* First operand, read only when the instruction has one: a lone opcode may end its buffer. */
+    u8 a = rcx_op_nominal_params(op) ? ins[1] : 0;
     s16 value;
     s16 *var;
 

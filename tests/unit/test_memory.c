@@ -225,7 +225,7 @@ static void repeated_block_written_once(void **state)
 
 static void out_of_order_and_oversize_blocks(void **state)
 {
-    u8 *code = pattern(60, 9);
+    u8 *code = pattern(70, 9); /* 60 bytes of task, and 10 more for the oversize block */
     struct rcx *b = brick_new();
     u16 w0[94], w1[94];
     (void)state;
