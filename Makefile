@@ -12,7 +12,7 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host asan firmware test bench run size deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test fuzz bench run size deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -48,6 +48,12 @@ test: host firmware asan
 asan: deps-host
 	CC=clang cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DRCX_SANITIZE=ON >/dev/null
 	cmake --build $(ASAN_DIR) -j $(JOBS)
+
+# Each libFuzzer binary for FUZZ_SECONDS on a copy of its stored corpus: executions, coverage, failures.
+FUZZ_SECONDS ?= 60
+fuzz: asan
+	@for f in $(ASAN_DIR)/tests/fuzz/fuzz_*; do n=$${f##*/fuzz_}; \
+	  sh tests/fuzz/run.sh $$f tests/fuzz/corpus/$$n $(ASAN_DIR)/fuzz-work/$$n $(FUZZ_SECONDS) || exit 1; done
 
 # Every tests/bench/*.sh prints its own figures; each gets the host and target build folders.
 bench: host firmware deps-bench

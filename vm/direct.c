@@ -34,13 +34,13 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
 {
     u8 obj;
 
+    if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
+        b->dl.active = 0;          /* that slot ends up empty */
+        mem_delete(b, b->dl.obj);
+    }
     if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
         return DL_BAD_NUMBER;
     obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
-    if (b->dl.active) {            /* a new download abandons the unfinished one: that slot ends up empty */
-        b->dl.active = 0;
-        mem_delete(b, b->dl.obj);
-    }
     if ((u32)size > (u32)mem_free(b) + mem_obj_size(b, obj))
         return DL_NO_MEMORY;       /* refused: the old code stays as it was */
     if (is_task)
