@@ -1,18 +1,67 @@
-/* The IR packet layer (host-tools.md §1, rcx-hardware.md §4): framing, toggle bit, replies. */
+/*
+ * The IR packet layer (host-tools.md §1, rcx-hardware.md §4, reference-firmware.md "IR command handling"):
+ * framing, the repeat rule of the toggle bit, replies, and what the machine asks to transmit.
+ *
+ * Half duplex: the receiver hears the brick's own transmission, so from the first byte handed to the driver
+ * until that many bytes have come back (or a little while after the line fell silent) received bytes are ignored.
+ * All buffers live in struct rcx_ir, i.e. in .bss on the brick, never on its 448-byte stack.
+ */
 #ifndef RCX_IR_H
 #define RCX_IR_H
 
 #include "rcx_types.h"
+#include "rcx_limits.h"
 
 struct rcx_brick;
 
+#define IR_BLOCK_MAX 200            /* longest 0x45 data block accepted: the 200 of nqc -firmware and firmdl3 */
+#define IR_RX_MAX (6 + IR_BLOCK_MAX) /* opcode, block number, length, data, block checksum */
+#define IR_CHUNK 40                 /* bytes handed to hal_ir_send() at once: a whole 16-byte UART packet fits */
+#define IR_QUIET_MS 30              /* silence inside a packet that resynchronises the receiver */
+#define IR_ECHO_MS 10               /* after transmitting, about two character times at 2400 baud for the echo */
+#define IR_SENSE_MS 10              /* silence before the machine's own transmission may start */
+
 struct rcx_ir {
-    u8 placeholder; /* receiver state, last opcode and reply for repeats: defined by the IR issue */
+    /* Receiver. */
+    u8 rx_state;        /* IR_RX_* in ir.c */
+    u8 rx_value;        /* value byte waiting for its complement */
+    u8 rx_sum;
+    u8 quiet;           /* milliseconds since another device's last byte (up to 255) */
+    u8 rx_len;          /* payload bytes accepted */
+    u8 rx_need;         /* payload bytes of this packet, once the opcode (and a 0x45 length) told */
+    u8 rx[IR_RX_MAX];
+
+    /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed. */
+    u8 have_last;
+    u8 last_op;
+    u8 reply_len;       /* 0: the last command has no reply */
+    u8 reply[RCX_REPLY_MAX];
+
+    /* Transmitter: a packet is framed on the fly from tx_src, IR_CHUNK bytes at a time. */
+    const u8 *tx_src;
+    u8 tx_src_len;
+    u8 tx_pack;         /* IR_PACK_* below */
+    u8 tx_mode;         /* HAL_IR_* */
+    u8 tx_sum;
+    u16 tx_pos;
+    u16 tx_total;
+    u16 echo;           /* own bytes not heard back yet */
+    u8 echo_quiet;      /* milliseconds since the transmitter went idle with echo outstanding */
+    u8 range;           /* range last given to hal_ir_range() */
+    u8 last_msg;        /* opcode byte of the last IR message sent (F7 / FF alternate) */
+    u8 chunk[IR_CHUNK];
 };
+
+/* Framing bits, as PackConf (source 33 byte 16, spec p. 9) names them. */
+#define IR_PACK_PREAMBLE 0x01   /* 55 FF 00 */
+#define IR_PACK_COMPLEMENT 0x02 /* every byte followed by its complement, checksum included */
+#define IR_PACK_CHECKSUM 0x04   /* a checksum byte (always present with IR_PACK_COMPLEMENT) */
+#define IR_PACK_STANDARD 0x07
 
 void ir_init(struct rcx_brick *k);
 void ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
+u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */
 
 #endif

@@ -1,11 +1,15 @@
 /* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. */
 #include "runtime.h"
+#include "hal.h"
 
 RCX_STATIC_ASSERT(vm_is_first, offsetof(struct rcx_brick, vm) == 0);
 
+/* The port attaches its data (rcx.port) before power-on, and may be called from the init functions below. */
 void rt_init(struct rcx_brick *k, u16 arena_addr)
 {
+    void *port = k->vm.port;
     vm_init(&k->vm, arena_addr);
+    k->vm.port = port;
     ir_init(k);
     ui_init(k);
 }
@@ -20,6 +24,13 @@ void rt_tick(struct rcx_brick *k)
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
     ir_poll(k);
+    /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a
+     * downloader sends the next command the moment it has the reply. */
+    if (k->vm.boot_mode && ir_idle(k)) {
+        k->vm.boot_mode = 0;
+        hal_enter_rom(&k->vm);
+        return 0;
+    }
     ui_poll(k);
     return vm_run(&k->vm, budget);
 }

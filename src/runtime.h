@@ -20,7 +20,7 @@ struct rcx_brick {
 
 #define rt_brick_of(b) ((struct rcx_brick *)(void *)(b))
 
-/* Power-on: machine, IR link and user interface in their initial state. */
+/* Power-on: machine, IR link and user interface in their initial state. Keeps rcx.port: attach the port first. */
 void rt_init(struct rcx_brick *k, u16 arena_addr);
 
 /* One millisecond has passed (call once per elapsed ms, from the main loop). */

@@ -1,4 +1,15 @@
-/* The LCD (spec pp. 51, 66, 97; source 14; rcx-hardware.md §3.6): views composed into the 9-byte segment image. */
+/*
+ * The LCD (spec pp. 51, 66, 97; source 14; rcx-hardware.md §3.6): views, indicators and marks composed into the
+ * 9-byte segment image and handed to hal_lcd() when it changes.
+ *
+ * What the glass shows: the program slot + 1 in the small digit; the figure standing, or walking (alternating with
+ * standing every 320 ms) while any task runs or waits; an "active" mark over each input with a sensor type set; the
+ * arrow of each motor being driven (right = forward); the "selected" mark of the viewed input or output; and the
+ * view's number in the four digits: the watch as hh.mm (the glass has no colon, so the decimal point of "00.00"
+ * separates hours from minutes), an input's value (temperatures in tenths, with one decimal), an output's power
+ * level, or the user's source with 0-3 decimals. Leading zeros are dropped; a minus sign sits left of the first
+ * digit; magnitudes above 9999 show as "----".
+ */
 #ifndef RCX_DISPLAY_H
 #define RCX_DISPLAY_H
 
@@ -6,12 +17,45 @@
 
 struct rcx;
 
+#define DISPLAY_BYTES 9
+#define DISPLAY_REFRESH_MS 50  /* the image is recomposed this often and sent only when it differs */
+#define DISPLAY_MAX 9999       /* larger magnitudes show as "----" */
+
+/* Views (SelectDisplay, spec p. 66). */
+enum display_view { DISPLAY_WATCH = 0, DISPLAY_INPUT_1, DISPLAY_INPUT_2, DISPLAY_INPUT_3,
+                    DISPLAY_OUTPUT_A, DISPLAY_OUTPUT_B, DISPLAY_OUTPUT_C, DISPLAY_USER };
+
+/* A segment: bit `bit` of image byte `byte` (rcx-hardware.md §3.6). */
+#define DISPLAY_SEG(byte, bit) ((u8)((byte) << 3 | (bit)))
+
+/* Marks the runtime switches with display_mark(). IR range: low arc alone = short, both arcs = long. */
+#define DISPLAY_MARK_BATTERY DISPLAY_SEG(4, 0)  /* battery low "X" */
+#define DISPLAY_MARK_IR_LOW DISPLAY_SEG(6, 2)
+#define DISPLAY_MARK_IR_HIGH DISPLAY_SEG(6, 3)
+#define DISPLAY_MARK_LOG_Q0 DISPLAY_SEG(2, 0)   /* datalog circle quarters, anticlockwise from top right */
+#define DISPLAY_MARK_LOG_Q1 DISPLAY_SEG(2, 1)
+#define DISPLAY_MARK_LOG_Q2 DISPLAY_SEG(2, 3)
+#define DISPLAY_MARK_LOG_Q3 DISPLAY_SEG(2, 2)
+#define DISPLAY_MARK_DOT0 DISPLAY_SEG(6, 4)     /* progress dots, dot 0 rightmost per §3.6 (brickEmu draws the reverse) */
+#define DISPLAY_MARK_DOT1 DISPLAY_SEG(8, 0)
+#define DISPLAY_MARK_DOT2 DISPLAY_SEG(8, 4)
+#define DISPLAY_MARK_DOT3 DISPLAY_SEG(7, 0)
+#define DISPLAY_MARK_DOT4 DISPLAY_SEG(7, 4)
+
 struct rcx_display {
-    u8 view;   /* 0 watch, 1-3 inputs, 4-6 outputs, 7 user selection */
+    u8 view;             /* enum display_view */
+    u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
+    u8 user_source;
+    u16 user_index;
+    u8 clock;            /* milliseconds since the last composition */
+    u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
+    u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
+    u8 work[DISPLAY_BYTES];  /* the image being composed */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
-void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue */
+void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
+void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
 void display_tick(struct rcx *b);                                   /* every 1 ms */
 
 #endif

@@ -1,5 +1,7 @@
 /*
  * Events, event monitoring and access control (spec pp. 63, 69-71, 74, 85, 96, 100-107; sources 23, 25, 27-31).
+ * The event engine is vm/events.c; the monitoring/access-control state machine of p. 107 is vm/access.c
+ * (its states and inputs are in vm/access.h).
  */
 #ifndef RCX_EVENTS_H
 #define RCX_EVENTS_H
@@ -9,28 +11,74 @@
 struct rcx;
 struct rcx_task;
 
+/* Event sensors as SetEvent numbers them (spec pp. 70, 100). */
+#define RCX_EVENT_SRC_TIMER 3     /* 3-6: timers 0-3 */
+#define RCX_EVENT_SRC_MESSAGE 7
+#define RCX_EVENT_SRC_COUNTER 8   /* 8-10: counters 0-2 */
+#define RCX_EVENT_SRC_LAST 10
+
+/* Event types (spec p. 70); 4-6, 13 and 15 do not exist. */
+#define RCX_EVENT_PRESSED 0
+#define RCX_EVENT_RELEASED 1
+#define RCX_EVENT_PERIOD 2
+#define RCX_EVENT_TRANSITION 3
+#define RCX_EVENT_CHANGE_RATE 7
+#define RCX_EVENT_LOW 8           /* enter low; 9 normal and 10 high follow the state numbers */
+#define RCX_EVENT_NORMAL 9
+#define RCX_EVENT_HIGH 10
+#define RCX_EVENT_CLICK 11
+#define RCX_EVENT_DOUBLE_CLICK 12
+#define RCX_EVENT_MAILBOX 14
+#define RCX_EVENT_NONE 16         /* SetEvent type 16 clears the event */
+
+/* Event states, source 25 (spec p. 8). */
+#define RCX_EVENT_STATE_LOW 0
+#define RCX_EVENT_STATE_NORMAL 1
+#define RCX_EVENT_STATE_HIGH 2
+#define RCX_EVENT_STATE_UNDEFINED 3
+#define RCX_EVENT_STATE_CAL_START 4
+#define RCX_EVENT_STATE_CAL_BUSY 5
+
 struct rcx_event {
     u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters */
-    u8 type;        /* 0-14; RCX_EVENT_NONE when cleared */
+    u8 type;        /* see RCX_EVENT_*; RCX_EVENT_NONE when cleared */
     u8 state;       /* source 25 */
+    u8 flags;       /* private to events.c: last boolean, click progress */
     s16 upper;      /* source 28 */
     s16 lower;      /* source 29 */
     s16 hysteresis; /* source 30 */
     s16 duration;   /* source 31, 10 ms units */
     s16 clicks;     /* source 27 */
+    union {         /* click timing and calibration never run at the same time */
+        struct {
+            u16 left_low;   /* rcx.ticks10 when the state last left LOW */
+            u16 last_click; /* rcx.ticks10 at the end of a click still waiting for its double */
+        } click;
+        struct {
+            s16 sum8;       /* of the values sampled so far, each divided by 8 ... */
+            u8 rem;         /* ... and of the remainders of those divisions */
+            u8 count;
+            u16 raw_sum;    /* of the raw samples (inputs only) */
+            u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
+        } cal;
+    } u;
 };
-
-#define RCX_EVENT_NONE 16
-#define RCX_EVENT_STATE_UNDEFINED 3
 
 /* Per-task state of monitoring and access control (the state machine of spec p. 107). */
 struct rcx_task_events {
     u16 events;     /* source 23: events that ended the last monitoring */
+    u16 mon;        /* events being monitored (MON) */
+    u16 ev_pc;      /* EV: exit label of event monitoring ... */
+    u16 ac_pc;      /* AC: ... and of access control, each a pc in the code object it was entered in */
+    u8 ev_sub;
+    u8 ac_sub;
+    u8 rc;          /* RC: resources held */
+    u8 state;       /* ACCESS_NONE ... ACCESS_AC_EV (vm/access.h) */
 };
 
 void events_init(struct rcx *b);
 void events_set(struct rcx *b, u8 ev, u8 source, u8 type);           /* SetEvent, operands checked */
-void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst);
+void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst); /* CalibrateEvent, byte order of p. 74 */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
 void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
 void events_counter_changed(struct rcx *b, u8 n);

@@ -222,8 +222,10 @@ u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
             events_set(b, a, ins[2], ins[3]);
         break;
     case RCX_OP_CALIBRATE_EVENT:
+        /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
+         * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
         if (a < RCX_EVENTS)
-            events_calibrate(b, a, ins[2], ins[3], ins[4]);
+            events_calibrate(b, a, ins[3], ins[2], ins[4]);
         break;
     case RCX_OP_SET_VAR:
     case RCX_OP_SUM_VAR:

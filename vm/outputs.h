@@ -15,10 +15,16 @@ struct rcx;
 #define RCX_MOTOR_BRAKE 0x40
 #define RCX_MOTOR_ON 0x80
 
+/* A motor driven in one direction is held braked this long before it is driven the other way (spec p. 99). */
+#define OUTPUTS_REVERSE_PAUSE_MS 60
+
 struct rcx_outputs {
-    u8 motor[3];  /* on/off, brake/float, direction, power as set by the program */
-    u8 global[3]; /* connected, direction normal, max power */
+    u8 motor[3];   /* on/off, brake/float, direction, power as set by the program */
+    u8 global[3];  /* connected (off: brake or float), direction normal, max power */
+    u8 applied[3]; /* what hal_motor() was last told: level << 2 | mode (enum hal_motor_mode) */
+    u8 pause[3];   /* milliseconds left of a reversing pause */
 };
+#define outputs_mode(b, i) ((u8)((b)->out.applied[i] & 3)) /* enum hal_motor_mode now on the wire */
 
 void outputs_init(struct rcx *b);          /* power-on: forward, float, full power (spec p. 98) */
 void outputs_changed(struct rcx *b);       /* registers were written: recompute and apply */
@@ -30,6 +36,6 @@ u8 outputs_global_status(const struct rcx *b, u8 motor); /* source 17 */
 void outputs_program_start(struct rcx *b); /* Run pressed: forward, brake, max power */
 void outputs_program_stop(struct rcx *b);  /* Run pressed again, or program changed: brake */
 void outputs_remote(struct rcx *b, u8 fwd_mask, u8 rev_mask); /* remote motor buttons held (0, 0 = released) */
-void outputs_revoked(struct rcx *b, u8 resources); /* access lost: affected motors brake */
+void outputs_revoked(struct rcx *b, u8 resources); /* access lost: affected motors brake (0x01 A, 0x02 B, 0x08 C) */
 
 #endif

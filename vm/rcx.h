@@ -99,10 +99,6 @@ struct rcx {
     u8 tx_range;           /* PbTXPower: 0 short, 1 long */
     u8 boot_mode;          /* GoIntoBootMode accepted */
 
-    /* Counted uses of byte codes whose engine is not written yet: each placeholder engine counts here, so a
-     * test can tell that a byte code reached its engine and that its effect is still owed. */
-    u16 engine_pending;
-
     void *port;     /* the hardware port's own data for this brick (host simulator); the machine never uses it */
 
     u8 arena[RCX_ARENA_SIZE];

@@ -1,6 +1,72 @@
-/* Placeholder: remote control and IR transmission are owed (engine_pending counts their uses). */
+/*
+ * RemoteCommand (spec p. 61) and the transmit requests of SendPBMessage (p. 59) and SendUARTData (p. 60).
+ *
+ * The LEGO remote repeats its packet while a button is held, and the IR layer does not execute a packet whose
+ * opcode byte repeats the previous one; so what arrives here is one packet per change of the buttons. Motor bits
+ * are level-triggered (held while set), everything else acts on the press edge only: a one-shot button acts again
+ * after a packet without it, normally `remote 0`.
+ */
+#include "rcx_string.h"
 #include "rcx.h"
+#include "hal.h"
 
-void remote_command(struct rcx *b, u16 bits) { (void)bits; b->engine_pending++; }
-void remote_send_message(struct rcx *b, u8 message) { (void)message; b->engine_pending++; }
-void remote_send_uart(struct rcx *b, u8 start, u8 size) { (void)start; (void)size; b->engine_pending++; }
+RCX_STATIC_ASSERT(uartconf_is_hal_mode, HAL_IR_4800 == 1 && HAL_IR_76KHZ == 2 && HAL_IR_DUTY25 == 4);
+
+/* Index of the lowest set bit of a non-zero value. */
+static u8 lowest_bit(u16 v)
+{
+    u8 n = 0;
+    while (!(v & 1u)) {
+        v >>= 1;
+        n++;
+    }
+    return n;
+}
+
+void remote_command(struct rcx *b, u16 bits)
+{
+    u16 pressed = (u16)(bits & ~b->remote.held);
+    u16 changed = (u16)(bits ^ b->remote.held);
+
+    b->remote.held = bits;
+    /* Only a change of the motor buttons touches the motors: a one-shot button must not brake a program's motors. */
+    if (changed & REMOTE_MOTORS)
+        outputs_remote(b, (u8)((bits >> 11) & 7u), (u8)(((bits >> 14) & 3u) | ((bits & REMOTE_MOTOR_C_REV) << 2)));
+    if (pressed & REMOTE_STOP) {
+        sched_stop_all(b);
+        outputs_program_stop(b);
+    }
+    if (pressed & REMOTE_PROGRAMS) {
+        /* "prgm N, start 0" (spec p. 98): motors brake, the slot is selected and its task 0 started. */
+        outputs_program_stop(b);
+        sched_select_program(b, (u8)(lowest_bit(pressed & REMOTE_PROGRAMS) - 1), 1);
+    }
+    if (pressed & REMOTE_SOUND)
+        sound_system(b, REMOTE_SYSTEM_SOUND);
+    if (pressed & REMOTE_MESSAGES) {
+        /* As InternMessage would: PB message 1-3. */
+        b->message = (u8)(lowest_bit(pressed & REMOTE_MESSAGES) - 7);
+        events_message_changed(b);
+    }
+}
+
+void remote_send_message(struct rcx *b, u8 message)
+{
+    struct rcx_remote *r = &b->remote;
+    r->tx[0] = RCX_OP_MESSAGE;
+    r->tx[1] = message;
+    r->tx_len = 2;
+    r->tx_pack = 0x07; /* a standard packet, as any host sends it */
+    r->tx_mode = 0;
+    r->tx_msg = 1;
+}
+
+void remote_send_uart(struct rcx *b, u8 start, u8 size)
+{
+    struct rcx_remote *r = &b->remote;
+    memcpy(r->tx, b->uart + start, size); /* copied now: the program may rewrite the buffer before it goes out */
+    r->tx_len = size;
+    r->tx_pack = (u8)(b->uart[16] & 7u);
+    r->tx_mode = (u8)(b->uart[17] & 7u);
+    r->tx_msg = 0;
+}

@@ -1,39 +1,204 @@
-/* Sensor types and modes. Value conversion from raw samples is owed to the sensor engine (engine_pending). */
+/*
+ * Sensor processing: every millisecond each input's raw sample becomes its boolean (source 13) and, by mode, its
+ * value (source 9). Conversions and thresholds are rcx-hardware.md §3.3 and reference-firmware.md "Sensors".
+ */
 #include "rcx.h"
+#include "hal.h"
 
-/* Default mode for each sensor type (spec p. 52): raw, boolean, Celsius, percent, angle. */
-static const u8 default_mode[5] = { 0x00, 0x20, 0xA0, 0x80, 0xE0 };
+/* Default mode of each type (spec p. 52): raw, boolean, Celsius, percent, angle. */
+static const u8 default_mode[] = {
+    SENSOR_MODE_RAW, SENSOR_MODE_BOOL, SENSOR_MODE_CELSIUS, SENSOR_MODE_PERCENT, SENSOR_MODE_ANGLE
+};
 
-void sensor_set_type(struct rcx *b, u8 n, u8 type)
+/* Absolute boolean: 45 % / 55 % of full scale with the band between as hysteresis (spec p. 7). */
+#define BOOL_ON_BELOW 460
+#define BOOL_OFF_ABOVE 562
+
+/*
+ * Percent = (1023 - raw) * 25 / 156, with everything below 393 shown as 100. firm0328 switches at 391 and so reads
+ * 101 for raw 391 and 392 (reference-firmware.md); a percentage above 100 is a defect no program can want, so the
+ * switch point is moved to where the formula itself reaches 100.
+ */
+#define PERCENT_FULL_BELOW 393
+
+/*
+ * Temperature in tenths of a degree Celsius: trunc((raw * k + d) / 100) on seven straight pieces (rcx-hardware.md
+ * §3.3, the rows below are its table's raw start, k and d). The product needs 18 bits, so each row is turned at
+ * compile time into 16-bit terms: with B = d + start * k = 100 * q + f (0 <= f < 100) and Y = (raw - start) * -k +
+ * 100 - f, the value is E = q + 1 - Y / 100, less one when Y is not a multiple of 100 and E > 0 (trunc toward 0).
+ */
+struct temp_piece {
+    u16 start;      /* first raw value of the piece */
+    s16 base;       /* q + 1 */
+    u8 slope;       /* -k - 100 (k is -107 ... -261) */
+    u8 frac;        /* 100 - f */
+};
+#define TEMP_B(start, k, d) ((long)(d) + (long)(start) * (k))
+#define TEMP_F(start, k, d) ((TEMP_B(start, k, d) % 100 + 100) % 100)
+#define TEMP_PIECE(start, k, d) \
+    { start, (s16)((TEMP_B(start, k, d) - TEMP_F(start, k, d)) / 100 + 1), (u8)(-(k) - 100), \
+      (u8)(100 - TEMP_F(start, k, d)) }
+static const struct temp_piece temp_table[] = {
+    TEMP_PIECE(290, -261, 145200),
+    TEMP_PIECE(340, -194, 123000),
+    TEMP_PIECE(390, -144, 103500),
+    TEMP_PIECE(478, -123, 93600),
+    TEMP_PIECE(520, -107, 85200),
+    TEMP_PIECE(790, -134, 106600),
+    TEMP_PIECE(886, -175, 142600),
+    { 928, 0, 0, 0 } /* end of the table: raw 928 and above are invalid */
+};
+
+static s16 celsius(u16 raw)
 {
-    if (n >= RCX_SENSORS || type >= sizeof default_mode)
-        return;
-    b->sensor[n].type = type;
-    b->sensor[n].mode = default_mode[type];
-    b->sensor[n].value = 0;
-    b->sensor[n].boolean = 0;
-    b->engine_pending++;
+    const struct temp_piece *p = temp_table;
+    u16 y, q;
+    s16 e;
+
+    if (raw < temp_table[0].start || raw >= temp_table[7].start)
+        return SENSOR_TEMP_INVALID;
+    while (raw >= p[1].start)
+        p++;
+    y = (u16)((raw - p->start) * (p->slope + 100u) + p->frac);
+    q = (u16)(y / 100);
+    e = (s16)(p->base - (s16)q);
+    if (y != q * 100u && e > 0) /* one division: the brick has no divide instruction for this */
+        e--;
+    return e;
 }
 
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
+/*
+ * Rotation sensor: four voltage levels per step, read as phases by raw value (rcx-hardware.md §3.3): 960-1023 phase 0,
+ * 768-959 phase 1, 320-511 phase 2, 512-767 phase 3; below 320 is no valid level. 0-1-2-3-0 counts up, the reverse
+ * down (the sign brickOS uses; firm0328's is not established); a jump of two phases cannot tell the direction and
+ * counts nothing. Sampled every millisecond, a step per sample (1 000 steps/s, 62 turns/s) is still counted exactly.
+ */
+#define PHASE_NONE 4
+/* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. */
+static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
+#define rotation_phase(raw) phase_of[(raw) >> 6]
+
+/* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
+static void restart(struct rcx_sensor *s)
 {
-    if (n >= RCX_SENSORS)
-        return;
-    b->sensor[n].mode = mode;
-    b->sensor[n].value = 0;
-    b->engine_pending++;
+    u8 i;
+    for (i = 0; i < SENSOR_DT_MS; i++)
+        s->past[i] = s->raw;
+    s->phase = rotation_phase(s->raw);
 }
 
 void sensor_clear(struct rcx *b, u8 n)
 {
-    if (n >= RCX_SENSORS)
+    if (n < RCX_SENSORS) {
+        b->sensor[n].value = 0;
+        b->sensor[n].stale = 1;
+    }
+}
+
+void sensor_set_type(struct rcx *b, u8 n, u8 type)
+{
+    struct rcx_sensor *s;
+
+    if (n >= RCX_SENSORS || type >= sizeof default_mode)
         return;
-    b->sensor[n].value = 0;
-    b->engine_pending++;
+    s = &b->sensor[n];
+    s->type = type;
+    s->mode = default_mode[type];
+    s->boolean = 0;
+    restart(s);
+    sensor_clear(b, n);
+    /* Light and rotation sensors are active: they take their power from the input (rcx-hardware.md §3.3). */
+    hal_sensor_power(b, n, type >= SENSOR_LIGHT);
+}
+
+void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
+{
+    if (n < RCX_SENSORS)
+        b->sensor[n].mode = mode;
+    sensor_clear(b, n);
+}
+
+/*
+ * Boolean of dynamic measurement (spec p. 102): near either end of the scale it follows the level; otherwise a rise
+ * of more than `slope` within dt reads 0 and a fall of more than `slope` reads 1 (a falling raw value is a press),
+ * anything slower leaves it as it was. The spec's "dU/dt < slope then TRUE" can only mean a fall steeper than slope:
+ * read literally, every steady signal would be TRUE and no change would ever be detected.
+ */
+static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
+{
+    u8 slope = (u8)(s->mode & SENSOR_SLOPE);
+
+    if (!slope) {
+        if (raw < BOOL_ON_BELOW)
+            return 1;
+        if (raw > BOOL_OFF_ABOVE)
+            return 0;
+    } else {
+        if (raw > 1023 - slope || (s16)(raw - then) > slope)
+            return 0;
+        if (raw < slope || (s16)(then - raw) > slope)
+            return 1;
+    }
+    return s->boolean;
+}
+
+/* Steps the rotation sensor turned since the last valid sample: +1, -1 or 0. */
+static s8 rotation_step(struct rcx_sensor *s, u16 raw)
+{
+    u8 phase = rotation_phase(raw), turn = (u8)((phase - s->phase) & 3), was = s->phase;
+
+    if (phase == PHASE_NONE)
+        return 0;
+    s->phase = phase;
+    if (was == PHASE_NONE || turn == 2)
+        return 0;
+    return (s8)(turn == 3 ? -1 : turn);
 }
 
 void sensor_sample(struct rcx *b, u8 n, u16 raw)
 {
-    if (n < RCX_SENSORS)
-        b->sensor[n].raw = (u16)(raw & 0x3FF);
+    struct rcx_sensor *s;
+    u8 was, mode, same;
+    s8 step;
+    s16 v;
+    u16 then;
+
+    if (n >= RCX_SENSORS)
+        return;
+    s = &b->sensor[n];
+    raw &= 0x3FF;
+    same = raw == s->raw && !s->stale;
+    s->stale = 0;
+    s->raw = raw;
+    then = s->past[s->past_at];
+    s->past[s->past_at] = raw;
+    if (++s->past_at >= SENSOR_DT_MS)
+        s->past_at = 0;
+    step = rotation_step(s, raw);
+
+    was = s->boolean;
+    s->boolean = boolean_of(s, raw, then);
+    v = s->value;
+    mode = (u8)(s->mode & ~SENSOR_SLOPE);
+    if (mode == SENSOR_MODE_RAW)
+        v = (s16)raw;
+    else if (mode == SENSOR_MODE_BOOL)
+        v = s->boolean;
+    else if (mode == SENSOR_MODE_TRANSITIONS)
+        v = (s16)(v + (s->boolean != was));
+    else if (mode == SENSOR_MODE_PERIODS)
+        v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
+    else if (mode == SENSOR_MODE_ANGLE)
+        v = (s16)(v + step);
+    else if (same)
+        ; /* conversions cost divisions, which the brick does in software: skip them while raw holds still */
+    else if (mode == SENSOR_MODE_PERCENT)
+        v = raw < PERCENT_FULL_BELOW ? 100 : (s16)((1023u - raw) * 25u / 156u);
+    else {
+        v = celsius(raw);
+        if (mode == SENSOR_MODE_FAHRENHEIT && v != SENSOR_TEMP_INVALID)
+            v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
+    }
+    s->value = v;
+    events_input(b, n);
 }

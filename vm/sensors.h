@@ -1,6 +1,6 @@
 /*
- * Sensor processing (spec pp. 52-53, sources 9-13; rcx-hardware.md §3.3): types, modes, slopes, conversions.
- * Raw samples arrive once per millisecond per input through sensor_sample().
+ * Sensor processing (spec pp. 7, 30, 52-53, 102; sources 9-13; rcx-hardware.md §3.3): types, modes, slopes and the
+ * conversions from raw samples. Raw samples arrive once per millisecond per input through sensor_sample().
  */
 #ifndef RCX_SENSORS_H
 #define RCX_SENSORS_H
@@ -9,16 +9,45 @@
 
 struct rcx;
 
+/*
+ * Sensor types (source 10) and modes (source 11: mode in bits 5-7, slope in bits 0-4). The value (source 9) of each
+ * mode: raw 0-1023; boolean 0/1 (source 13 itself); transitions: changes of the boolean counted; periods: completed
+ * 1 -> 0 returns of the boolean (press and release of a touch sensor) counted; percent 0-100; Celsius and
+ * Fahrenheit in tenths of a degree, SENSOR_TEMP_INVALID outside the table; angle: rotation steps, 16 per turn.
+ * The counts start again from 0 with SetSensorMode and ClearSensorValue. Source 13 is computed in every mode: from
+ * the level with slope 0, from the change rate with slope 1-31.
+ */
+enum sensor_type { SENSOR_NONE = 0, SENSOR_TOUCH, SENSOR_TEMPERATURE, SENSOR_LIGHT, SENSOR_ROTATION };
+#define SENSOR_MODE_RAW 0x00
+#define SENSOR_MODE_BOOL 0x20
+#define SENSOR_MODE_TRANSITIONS 0x40
+#define SENSOR_MODE_PERIODS 0x60
+#define SENSOR_MODE_PERCENT 0x80
+#define SENSOR_MODE_CELSIUS 0xA0
+#define SENSOR_MODE_FAHRENHEIT 0xC0
+#define SENSOR_MODE_ANGLE 0xE0
+#define SENSOR_SLOPE 0x1F
+
+/* Value of the temperature modes outside the range the conversion table covers (raw below 290 or above 927). */
+#define SENSOR_TEMP_INVALID 0x7FFF
+
+/* Dynamic measurement compares each sample with the one of this many milliseconds before (spec p. 102: dt = 3 ms). */
+#define SENSOR_DT_MS 3
+
 struct rcx_sensor {
-    u8 type;        /* source 10: 0 none, 1 touch, 2 temperature, 3 light, 4 rotation */
-    u8 mode;        /* source 11: mode in bits 5-7, slope in bits 0-4 */
+    u8 type;        /* source 10 */
+    u8 mode;        /* source 11 */
     u16 raw;        /* source 12: last 10-bit sample */
     s16 value;      /* source 9 */
     u8 boolean;     /* source 13 */
+    u8 stale;       /* the value must be converted again even if raw has not changed */
+    u8 phase;       /* rotation sensor phase 0-3 of the last valid sample */
+    u8 past_at;     /* slot of past[] holding the oldest sample */
+    u16 past[SENSOR_DT_MS]; /* the last samples, for the change rate */
 };
 
-void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type and its default mode */
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode */
+void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
+void sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: the value restarts from 0 */
 void sensor_clear(struct rcx *b, u8 n);              /* ClearSensorValue */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
 

@@ -79,6 +79,8 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     case RCX_SRC_COUNTER:
         return b->global[index];
     case RCX_SRC_TASK_EVENTS:
+        if (index == RCX_TASKS) /* index 10: the asking task's own events, as nqc reads CurrentEvents() */
+            return t ? (s16)t->ev.events : 0;
         return (s16)b->task[index].ev.events;
     case RCX_SRC_EVENT_STATE:
         return b->event[index].state;

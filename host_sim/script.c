@@ -1,0 +1,148 @@
+/*
+ * --script FILE: timed inputs, one per line ('#' starts a comment):
+ *   <ms> [@<brick>] sensor <1-3> raw <0-1023>
+ *   <ms> [@<brick>] button <onoff|run|view|prgm> <down|up>
+ *   <ms> [@<brick>] battery <mV>
+ *   <ms> ir <hex bytes>            (sent into the room at 2400 baud, as a remote control would)
+ *   <ms> quit
+ * Lines may come in any order; events at the same time keep their order.
+ */
+#include <stdlib.h>
+#include <string.h>
+#include "sim.h"
+
+static int fail(const char *path, int line, const char *what)
+{
+    fprintf(stderr, "rcxsim: %s:%d: %s\n", path, line, what);
+    return -1;
+}
+
+static int word_index(const char *w, const char *const *list, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (strcmp(w, list[i]) == 0)
+            return i;
+    return -1;
+}
+
+static int parse_number(const char *w, long lo, long hi, long *out)
+{
+    char *end;
+    long v;
+    if (!w)
+        return -1;
+    v = strtol(w, &end, 10);
+    if (*w == 0 || *end || v < lo || v > hi)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_line(struct sim *s, char *text, struct sim_event *ev, const char *path, int line)
+{
+    static const char *const kinds[] = { "sensor", "button", "battery", "ir", "quit" };
+    static const char *const buttons[] = { "onoff", "run", "view", "prgm" };
+    static const char *const edges[] = { "up", "down" };
+    char *w[300];
+    int n = 0, k, at = 1;
+    long v;
+
+    for (w[n] = strtok(text, " \t\r\n"); w[n] && n < 299; w[++n] = strtok(NULL, " \t\r\n"))
+        ;
+    if (n == 0)
+        return 0;
+    memset(ev, 0, sizeof *ev);
+    if (parse_number(w[0], 0, 1000L * 3600 * 24 * 365, &v))
+        return fail(path, line, "expected a time in ms");
+    ev->at = (sim_us)v * 1000;
+    if (n > 1 && w[1][0] == '@') {
+        if (parse_number(w[1] + 1, 0, s->nbricks - 1, &v))
+            return fail(path, line, "no such brick");
+        ev->brick = (int)v;
+        at = 2;
+    }
+    if (at >= n || (k = word_index(w[at], kinds, 5)) < 0)
+        return fail(path, line, "expected sensor, button, battery, ir or quit");
+    ev->kind = k;
+    switch (ev->kind) {
+    case EV_SENSOR:
+        if (n != at + 4 || parse_number(w[at + 1], 1, 3, &v) || strcmp(w[at + 2], "raw"))
+            return fail(path, line, "expected: sensor <1-3> raw <0-1023>");
+        ev->a = (int)v - 1;
+        if (parse_number(w[at + 3], 0, 1023, &v))
+            return fail(path, line, "raw value out of 0-1023");
+        ev->b = (int)v;
+        break;
+    case EV_BUTTON:
+        if (n != at + 3 || (ev->a = word_index(w[at + 1], buttons, 4)) < 0 ||
+            (ev->b = word_index(w[at + 2], edges, 2)) < 0)
+            return fail(path, line, "expected: button <onoff|run|view|prgm> <down|up>");
+        break;
+    case EV_BATTERY:
+        if (n != at + 2 || parse_number(w[at + 1], 0, 65535, &v))
+            return fail(path, line, "expected: battery <mV>");
+        ev->a = (int)v;
+        break;
+    case EV_IR:
+        for (k = at + 1; k < n; k++) {
+            char *end;
+            unsigned long byte = strtoul(w[k], &end, 16);
+            if (*end || byte > 255 || ev->nbytes >= (int)sizeof ev->bytes)
+                return fail(path, line, "expected hex bytes (at most 256)");
+            ev->bytes[ev->nbytes++] = (unsigned char)byte;
+        }
+        if (ev->nbytes == 0)
+            return fail(path, line, "expected hex bytes");
+        break;
+    case EV_QUIT:
+        if (n != at + 1)
+            return fail(path, line, "expected nothing after quit");
+        break;
+    }
+    return 1;
+}
+
+int script_load(struct sim *s, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char text[4096];
+    int line = 0, cap = 0;
+
+    if (!f) {
+        perror(path);
+        return -1;
+    }
+    while (fgets(text, sizeof text, f)) {
+        struct sim_event ev;
+        char *hash = strchr(text, '#');
+        int r;
+        line++;
+        if (hash)
+            *hash = 0;
+        r = parse_line(s, text, &ev, path, line);
+        if (r < 0) {
+            fclose(f);
+            return -1;
+        }
+        if (r == 0)
+            continue;
+        if (s->nevents == cap) {
+            cap = cap ? 2 * cap : 64;
+            s->events = realloc(s->events, (size_t)cap * sizeof *s->events);
+            if (!s->events)
+                abort();
+        }
+        s->events[s->nevents++] = ev;
+    }
+    fclose(f);
+    /* Insertion sort: stable, so equal times keep the file's order (scripts are short). */
+    for (line = 1; line < s->nevents; line++) {
+        struct sim_event ev = s->events[line];
+        int j;
+        for (j = line; j > 0 && s->events[j - 1].at > ev.at; j--)
+            s->events[j] = s->events[j - 1];
+        s->events[j] = ev;
+    }
+    return 0;
+}

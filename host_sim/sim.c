@@ -1,0 +1,326 @@
+/*
+ * rcxsim, the virtual RCX: options, the bricks' power-on, and the main loop that advances simulated time one
+ * millisecond at a time (rt_tick, A/D samples, rt_run with the byte-code budget of that millisecond).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include "sim.h"
+#include "rcx_image.h"
+
+/* Where the program memory would sit in the brick's RAM: the top of 8000-EFFF (memory map, UploadRam). */
+#define SIM_ARENA_ADDR ((u16)(0xF000u - RCX_ARENA_SIZE))
+
+/* The brick model of firm0328's speed (reference-firmware.md, "Tasks and timing"): a scheduler pass over n
+ * running tasks costs about 2.45 ms + n x 0.245 ms, which reproduces the measured 185 x++ loops/s for one task
+ * and about 1 000 in total for ten. */
+#define PASS_US 2450
+#define BYTECODE_US 245
+
+static volatile sig_atomic_t stop_signal;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_signal = 1;
+}
+
+static void usage(FILE *f)
+{
+    fputs("usage: rcxsim [options]\n"
+          "  --tty PATH         a serial IR tower on a pseudo-terminal, PATH a symlink to it; once per brick\n"
+          "  --bricks N         N bricks (1-8) in one IR room\n"
+          "  --speed X          X times real time (default 1)\n"
+          "  --fast             as fast as possible\n"
+          "  --rate N|brick     byte codes per simulated ms, or the brick's own speed (default)\n"
+          "  --script FILE      timed inputs (sensor, button, battery, ir, quit)\n"
+          "  --trace FILE|-     JSON lines: motors, sound, LCD, sensor power, IR bytes sent, power, ROM\n"
+          "  --load [B@]F.rcx[:SLOT]  preload an nqc image into brick B (default 0), program slot 1-5\n"
+          "  --rom              start in the ROM's download mode (no firmware)\n"
+          "  --duration MS      stop after MS simulated milliseconds\n",
+          f);
+}
+
+void sim_start_firmware(struct sim_brick *b)
+{
+    b->mode = SIM_FIRMWARE;
+    b->k.vm.port = b;
+    memset(b->motor, 0xFF, sizeof b->motor);
+    b->lcd_known = 0;
+    rt_init(&b->k, SIM_ARENA_ADDR);
+    rt_battery(&b->k, (u16)b->battery_mv);
+    trace_line(b, "\"power\":\"on\"");
+}
+
+static struct sim_brick *new_brick(struct sim *s, int index, int rom)
+{
+    struct sim_brick *b = calloc(1, sizeof *b);
+    if (!b)
+        abort();
+    b->sim = s;
+    b->index = index;
+    b->raw[0] = b->raw[1] = b->raw[2] = 1023; /* nothing plugged in: the pull-up reads high */
+    b->battery_mv = 9000;
+    b->range = 0xFF;
+    if (rom) {
+        b->mode = SIM_ROM;
+        rom_reset(b);
+        trace_line(b, "\"rom\":\"waiting for firmware\"");
+    } else {
+        sim_start_firmware(b);
+    }
+    return b;
+}
+
+static int load_image(struct sim *s, const char *spec)
+{
+    char path[4096], err[256];
+    const char *colon;
+    int brick = 0, slot = -1;
+    struct rcx_image *img;
+    u8 *data;
+    size_t size;
+
+    if (strchr(spec, '@') && spec[0] >= '0' && spec[0] <= '9') {
+        brick = atoi(spec);
+        spec = strchr(spec, '@') + 1;
+    }
+    colon = strrchr(spec, ':');
+    if (colon && colon[1] >= '1' && colon[1] <= '5' && colon[2] == 0) {
+        slot = colon[1] - '1';
+    } else {
+        colon = NULL;
+    }
+    snprintf(path, sizeof path, "%.*s", colon ? (int)(colon - spec) : (int)strlen(spec), spec);
+    if (brick < 0 || brick >= s->nbricks || s->brick[brick]->mode != SIM_FIRMWARE) {
+        fprintf(stderr, "rcxsim: --load %s: no brick %d running the firmware\n", spec, brick);
+        return -1;
+    }
+    img = malloc(sizeof *img);
+    if (!img)
+        abort();
+    if (rcx_image_read_file(path, &data, &size, err, sizeof err) || rcx_image_parse(img, data, size, err, sizeof err) ||
+        rcx_image_load(&s->brick[brick]->k.vm, img, slot, err, sizeof err)) {
+        fprintf(stderr, "rcxsim: --load %s: %s\n", path, err);
+        return -1;
+    }
+    free(data);
+    free(img);
+    return 0;
+}
+
+static void apply_event(struct sim *s, const struct sim_event *ev)
+{
+    struct sim_brick *b = s->brick[ev->brick];
+    switch (ev->kind) {
+    case EV_SENSOR:
+        b->raw[ev->a] = (unsigned short)ev->b;
+        break;
+    case EV_BUTTON:
+        if (b->mode == SIM_STANDBY && ev->a == RT_BUTTON_ONOFF && ev->b) {
+            b->mode = SIM_FIRMWARE; /* the press that wakes the brick is not seen by the firmware */
+            trace_line(b, "\"power\":\"on\"");
+        } else if (b->mode == SIM_FIRMWARE) {
+            rt_button(&b->k, (u8)ev->a, (u8)ev->b);
+        }
+        break;
+    case EV_BATTERY:
+        b->battery_mv = (unsigned)ev->a;
+        if (b->mode == SIM_FIRMWARE)
+            rt_battery(&b->k, (u16)ev->a);
+        break;
+    case EV_IR:
+        room_send(s, &s->script_tx, ev->bytes, (unsigned)ev->nbytes, 0);
+        break;
+    case EV_QUIT:
+        s->quit = 1;
+        break;
+    }
+}
+
+static unsigned running_tasks(const struct rcx *vm)
+{
+    unsigned n = 0, m = vm->runmask;
+    for (; m; m &= m - 1)
+        n++;
+    return n;
+}
+
+/* One simulated millisecond of one brick. */
+static void step(struct sim *s, struct sim_brick *b)
+{
+    unsigned i, n, cost, budget;
+
+    if (b->mode == SIM_ROM) {
+        rom_tick(b);
+        return;
+    }
+    if (b->mode != SIM_FIRMWARE)
+        return;
+    rt_tick(&b->k);
+    for (i = 0; i < 3; i++)
+        rt_sensor_sample(&b->k, (u8)i, b->raw[i]);
+    if (s->rate) {
+        rt_run(&b->k, (u16)s->rate);
+        return;
+    }
+    n = running_tasks(&b->k.vm);
+    if (n == 0) {
+        b->credit_us = 0;
+        rt_run(&b->k, 0);
+        return;
+    }
+    cost = PASS_US / n + BYTECODE_US;
+    b->credit_us += 1000;
+    budget = (unsigned)b->credit_us / cost;
+    b->credit_us -= (long)(rt_run(&b->k, (u16)budget) * cost);
+    if (b->credit_us > (long)cost)
+        b->credit_us = cost; /* tasks that waited do not save up time */
+}
+
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec / 1e9;
+}
+
+/* Hold the loop back to `speed` x real time; towers that receive bytes wake it early. */
+static void pace(struct sim *s, double wall_start)
+{
+    struct pollfd fds[SIM_MAX_BRICKS];
+    double ahead = (double)s->now / 1e6 / s->speed - (wall_seconds() - wall_start);
+    int i;
+
+    if (ahead < 0.0005)
+        return;
+    for (i = 0; i < s->ntowers; i++) {
+        fds[i].fd = s->tower[i].master;
+        fds[i].events = POLLIN;
+    }
+    if (poll(fds, (nfds_t)s->ntowers, (int)(ahead * 1000 + 0.5)) < 0 && errno != EINTR)
+        s->quit = 1;
+}
+
+static int run(struct sim *s, sim_us duration)
+{
+    double wall_start = wall_seconds();
+    unsigned poll_every = s->speed <= 0 ? 64 : s->speed > 5 ? (unsigned)(s->speed / 5) : 1, ms = 0;
+    int i;
+
+    while (!s->quit && !stop_signal) {
+        room_advance(s, s->now);
+        while (s->next_event < s->nevents && s->events[s->next_event].at <= s->now)
+            apply_event(s, &s->events[s->next_event++]);
+        if (s->quit)
+            break;
+        if (s->ntowers && ms++ % poll_every == 0)
+            tower_poll(s);
+        for (i = 0; i < s->nbricks; i++)
+            step(s, s->brick[i]);
+        if (duration && s->now >= duration)
+            break;
+        s->now += 1000;
+        if (s->speed > 0)
+            pace(s, wall_start);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    static struct sim sim;
+    struct sim *s = &sim;
+    const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL;
+    int nttys = 0, nloads = 0, rom = 0, i, status = 0;
+    sim_us duration = 0;
+
+    s->nbricks = 1;
+    s->speed = 1;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (strcmp(a, "--fast") == 0) {
+            s->speed = 0;
+        } else if (strcmp(a, "--rom") == 0) {
+            rom = 1;
+        } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+            usage(stdout);
+            return 0;
+        } else if (!v) {
+            usage(stderr);
+            return 2;
+        } else {
+            i++;
+            if (strcmp(a, "--tty") == 0 && nttys < SIM_MAX_BRICKS) {
+                ttys[nttys++] = v;
+            } else if (strcmp(a, "--bricks") == 0 && atoi(v) >= 1 && atoi(v) <= SIM_MAX_BRICKS) {
+                s->nbricks = atoi(v);
+            } else if (strcmp(a, "--speed") == 0 && atof(v) > 0) {
+                s->speed = atof(v);
+            } else if (strcmp(a, "--rate") == 0 && (strcmp(v, "brick") == 0 || atoi(v) > 0)) {
+                s->rate = strcmp(v, "brick") == 0 ? 0 : (unsigned)atoi(v);
+            } else if (strcmp(a, "--script") == 0) {
+                script = v;
+            } else if (strcmp(a, "--trace") == 0) {
+                trace = v;
+            } else if (strcmp(a, "--load") == 0 && nloads < 64) {
+                loads[nloads++] = v;
+            } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
+                duration = (sim_us)atol(v) * 1000;
+            } else {
+                fprintf(stderr, "rcxsim: bad option %s %s\n", a, v);
+                usage(stderr);
+                return 2;
+            }
+        }
+    }
+    if (nttys > s->nbricks) {
+        fprintf(stderr, "rcxsim: more --tty than bricks\n");
+        return 2;
+    }
+    if (trace) {
+        s->trace = strcmp(trace, "-") == 0 ? stdout : fopen(trace, "w");
+        if (!s->trace) {
+            perror(trace);
+            return 2;
+        }
+        setvbuf(s->trace, NULL, _IOLBF, 0); /* lines appear as they happen: others watch the trace live */
+    }
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
+    signal(SIGHUP, on_signal);
+    signal(SIGPIPE, SIG_IGN);
+    if (script && script_load(s, script))
+        return 2;
+    for (i = 0; i < s->nbricks; i++)
+        s->brick[i] = new_brick(s, i, rom);
+    for (i = 0; i < nloads && status == 0; i++)
+        status = load_image(s, loads[i]);
+    for (i = 0; i < nttys && status == 0; i++) {
+        if (tower_open(s, &s->tower[i], ttys[i], s->brick[i])) {
+            fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
+            status = 1;
+        } else {
+            s->ntowers++;
+        }
+    }
+    if (status == 0)
+        run(s, duration);
+    for (i = 0; i < s->nbricks; i++) {
+        trace_flush_sound(s->brick[i]);
+        free(s->brick[i]);
+    }
+    if (s->trace && status == 0)
+        fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->now / 1000,
+                s->quit ? "quit" : stop_signal ? "signal" : "duration");
+    for (i = 0; i < s->ntowers; i++)
+        tower_close(&s->tower[i]);
+    if (s->trace && s->trace != stdout)
+        fclose(s->trace);
+    free(s->events);
+    return status ? 2 : 0;
+}

@@ -1,0 +1,122 @@
+/*
+ * The virtual RCX: whole firmware runtimes (src/ + vm/) on simulated drivers, any number of bricks in one simulated
+ * IR room, serial IR towers on pseudo-terminals for the real host tools, and the ROM's download mode.
+ *
+ * Time is simulated: the main loop advances it one millisecond at a time and hands each brick rt_tick(); the wall
+ * clock only paces the loop (real time, N x real time, or as fast as possible) and never reaches a brick.
+ */
+#ifndef RCX_SIM_H
+#define RCX_SIM_H
+
+#include <stdio.h>
+#include "runtime.h"
+
+typedef unsigned long long sim_us; /* simulated time, microseconds */
+
+#define SIM_MAX_BRICKS 8
+#define SIM_TX_QUEUE 4096          /* bytes waiting at one transmitter */
+
+/* A transmitter in the room: a brick's IR LED, a tower, or the script. Bytes leave back to back at the line rate. */
+struct sim_tx {
+    unsigned short queue[SIM_TX_QUEUE]; /* byte | HAL_IR_* mode << 8 */
+    unsigned head, count;
+    sim_us start, end;             /* the byte on the air (count > 0) */
+    int collided;                  /* another transmitter overlapped it */
+};
+
+struct sim_tower {                 /* a serial IR tower on a pseudo-terminal, facing one brick */
+    int master, slave;             /* we keep the slave open so the master never sees a hang-up */
+    char *link;                    /* the symlink the user named */
+    struct sim_tx tx;
+};
+
+/* The ROM's download mode (rcx-hardware.md §2, §4.3). */
+#define ROM_RX_MAX (6 + 1024)
+#define ROM_IMAGE 0x7000u          /* 8000-EFFF */
+struct sim_rom {
+    unsigned char rx[ROM_RX_MAX];
+    unsigned rx_len, rx_need, state, quiet, echo;
+    unsigned char rx_value, rx_sum;
+    int have_last;
+    unsigned char last_op, reply[32], reply_len;
+    int active;                    /* 0x75 seen, no block 0 yet */
+    int loaded;                    /* a 0x75 has been seen since the reset */
+    unsigned entry, checksum, ptr, last_ptr, expect, last_block;
+    int start_pending;             /* unlocked: start the firmware once the reply is out */
+    unsigned image_end;            /* highest byte written, for the trace */
+    unsigned char mem[ROM_IMAGE];
+};
+
+enum sim_mode { SIM_FIRMWARE, SIM_ROM, SIM_STANDBY };
+
+struct sim;
+
+struct sim_brick {
+    struct rcx_brick k;            /* first: a hal call's struct rcx * is the start of this struct */
+    struct sim *sim;
+    int index;
+    enum sim_mode mode;
+    struct sim_tx tx;              /* its IR LED */
+    struct sim_tower *tower;
+    unsigned short raw[3];         /* A/D value of inputs 1-3 */
+    unsigned battery_mv;
+    long credit_us;                /* byte-code budget of the brick model */
+    /* Last state reported to the trace. */
+    unsigned char motor[3], sensor_power[3], lcd[9], range;
+    int lcd_known;
+    unsigned sound_hz;
+    sim_us sound_start;
+    struct sim_rom rom;
+};
+
+struct sim_event {                 /* one line of the --script file */
+    sim_us at;
+    int brick;
+    enum { EV_SENSOR, EV_BUTTON, EV_BATTERY, EV_IR, EV_QUIT } kind;
+    int a, b;
+    unsigned char bytes[256];
+    int nbytes;
+};
+
+struct sim {
+    sim_us now;
+    int nbricks;
+    struct sim_brick *brick[SIM_MAX_BRICKS];
+    int ntowers;
+    struct sim_tower tower[SIM_MAX_BRICKS];
+    struct sim_tx script_tx;       /* `ir` lines of the script: heard by every brick and tower */
+    struct sim_event *events;
+    int nevents, next_event;
+    FILE *trace;
+    double speed;                  /* x real time; 0 = as fast as possible */
+    unsigned rate;                 /* byte codes per ms; 0 = the brick model */
+    int quit;
+};
+
+/* room.c: the shared IR room and the towers. */
+void room_send(struct sim *s, struct sim_tx *tx, const unsigned char *data, unsigned len, unsigned mode);
+int room_busy(const struct sim_tx *tx);
+void room_advance(struct sim *s, sim_us until);
+int tower_open(struct sim *s, struct sim_tower *t, const char *link, struct sim_brick *b);
+void tower_poll(struct sim *s);
+void tower_close(struct sim_tower *t);
+
+/* rom.c */
+void rom_reset(struct sim_brick *b);
+void rom_byte(struct sim_brick *b, unsigned char byte, int error);
+void rom_tick(struct sim_brick *b);
+
+/* sim.c */
+void sim_start_firmware(struct sim_brick *b);
+
+/* trace.c */
+void trace_line(struct sim_brick *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void trace_lcd_number(const unsigned char *image, char *num, char *prog);
+void trace_flush_sound(struct sim_brick *b);
+
+/* script.c */
+int script_load(struct sim *s, const char *path);
+
+#define sim_brick_of(rcx) ((struct sim_brick *)(void *)(rcx))
+
+#endif

@@ -1,0 +1,46 @@
+#!/bin/sh
+# IR messages (nqc -msg: F7 n) and the LEGO remote's commands (nqc -remote: D2 lo hi, spec p. 61), checked by
+# polling source 15 (message), 8 (program slot) and variables, and by the motors and sound in the trace.
+. "$E2E_DIR/lib.sh"
+T="$WORK/tty"
+start_sim --tty "$T" --speed 20
+
+nqc_on "$T" -msg 7 || fail "-msg"
+expect "$(poll "$T" 15 0)" 7 "message after nqc -msg 7"
+
+# PB message 2 (high byte 02). nqc sends no ping before -remote: the polls in between end the repeat.
+nqc_on "$T" -remote 0200 1 || fail "-remote message"
+expect "$(poll "$T" 15 0)" 2 "message after the remote's message 2"
+
+# Program 3 (low byte 08): selects slot 3 and starts its task 0.
+nqc_on "$T" -TRCX2 -d -pgm 3 "$E2E_DIR/slot.nqc" -pgm 1 >/dev/null || fail "download to slot 3"
+expect "$(poll "$T" 8 0)" 0 "slot 1 selected again"
+nqc_on "$T" -remote 0008 1 || fail "-remote program 3"
+expect "$(poll "$T" 8 0)" 2 "slot after the remote's program 3"
+wait_poll "$T" 0 5 77 "program 3 started by the remote"
+
+# Motor A forwards is held (repeated packets are repeats), released by remote 0 after another command.
+nqc_on "$T" -remote 0800 3 || fail "-remote motor A"
+sleep 0.3
+[ -n "$(traced '"motor":"A","dir":"fwd","level":7')" ] || fail "motor A not forward"
+nqc_on "$T" -raw 10 >/dev/null
+nqc_on "$T" -remote 0000 1 || fail "-remote 0"
+sleep 0.3
+[ -n "$(traced '"motor":"A","dir":"brake"')" ] || fail "motor A not braked on release (spec p. 98)"
+
+# The sound button: system sound 1, beep-beep at 996 Hz.
+nqc_on "$T" -raw 10 >/dev/null
+nqc_on "$T" -remote 0080 1 || fail "-remote sound"
+sleep 0.5
+[ -n "$(traced '"sound":996,"ms":150')" ] || fail "no beep"
+
+# Stop program & motors (low byte 40): a program counting for ever stops counting.
+nqc_on "$T" -TRCX2 -d -pgm 4 "$E2E_DIR/forever.nqc" -run >/dev/null || fail "download forever"
+sleep 0.2
+a=$(poll "$T" 0 0)
+nqc_on "$T" -remote 0040 1 || fail "-remote stop"
+b=$(poll "$T" 0 0)
+[ "$a" != "$b" ] || fail "the counter was not running ($a)"
+c=$(poll "$T" 0 0)
+sleep 0.3
+expect "$(poll "$T" 0 0)" "$c" "counter stopped by the remote"

@@ -1,0 +1,34 @@
+#!/bin/sh
+# rcxsim refuses what it cannot do, with a message and exit status 2, instead of running half set up.
+. "$E2E_DIR/lib.sh"
+refused() { # refused "what" args...
+    what="$1"
+    shift
+    if "$RCXSIM" --fast --duration 10 "$@" >"$WORK/out" 2>&1; then fail "$what: accepted"; fi
+    [ -s "$WORK/out" ] || fail "$what: no message"
+}
+refused "unknown option" --bogus 1
+refused "option without value" --speed
+refused "zero speed" --speed 0
+refused "nine bricks" --bricks 9
+refused "two ttys, one brick" --tty "$WORK/a" --tty "$WORK/b"
+printf '100 sensor 4 raw 10\n' >"$WORK/s1"
+refused "sensor 4" --script "$WORK/s1"
+grep -q 's1:1:' "$WORK/out" || fail "no line number: $(cat "$WORK/out")"
+printf '# fine\n100 button run down\n200 ir 55 ff zz\n' >"$WORK/s2"
+refused "bad hex" --script "$WORK/s2"
+grep -q 's2:3:' "$WORK/out" || fail "no line number: $(cat "$WORK/out")"
+printf '100 @1 battery 7000\n' >"$WORK/s3"
+refused "brick 1 of 1" --script "$WORK/s3"
+refused "missing image" --load "$WORK/none.rcx"
+head -c 300 /dev/urandom >"$WORK/junk.rcx"
+refused "not an image" --load "$WORK/junk.rcx"
+"$NQC" -TRCX2 -O"$WORK/slot.rcx" "$E2E_DIR/slot.nqc"
+refused "image into the ROM" --rom --load "$WORK/slot.rcx"
+# And what it accepts runs: the same image, a good script, every kind of line.
+printf '0 @1 sensor 3 raw 0\n5 button view down\n6 button view up\n7 battery 7100\n8 ir 55 ff 00 10 ef 10 ef\n' >"$WORK/s4"
+"$RCXSIM" --fast --bricks 2 --load "1@$WORK/slot.rcx:5" --script "$WORK/s4" --duration 100 --trace "$TRACE" ||
+    fail "a good command line was refused"
+[ -n "$(traced '"brick":1,"ir":"55ff00ef10ef10"')" ] || fail "brick 1 did not answer the script's ping"
+[ -n "$(traced '"brick":0,"ir":"55ff00ef10ef10"')" ] || fail "brick 0 did not answer the script's ping"
+expect "$(tail -n 1 "$TRACE")" '{"t":100,"end":"duration"}' "end of the trace"
