@@ -31,18 +31,23 @@ enum rcx_op {
     RCX_OP_NONE = 0xFF
 };
 
-/* Per-opcode properties, indexed by rcx_op_index(). */
-struct rcx_opinfo {
-    u8 code;   /* RCX_OP_NONE for a hole in the table */
-    u8 params; /* operand bytes, or RCX_VARLEN */
-    u8 avail;  /* RCX_DIRECT | RCX_PROGRAM */
-    u8 reply;  /* reply length, 0 none, RCX_REPLY_VAR */
-};
-
 /* The table has 128 rows: the toggle bit folded out of the opcode byte. */
 #define rcx_op_index(op) ((u8)((((op) >> 1) & 0x78) | ((op) & 0x07)))
 
-extern const struct rcx_opinfo rcx_opinfo[128];
+/*
+ * Per-opcode properties packed into one byte each (the firmware keeps only these 128 bytes):
+ * bits 0-2 operand bytes (ContinueDL's nominal 5: its packet carries its own length), bits 3-4 availability,
+ * bits 5-7 reply class (see rcx_op_reply). A row of 0 is an opcode the RCX 2.0 does not have.
+ */
+extern const u8 rcx_opflags[128];
+#define RCX_OPFLAGS_PACK(params, avail, reply)                                                          \
+    ((u8)(((params) == RCX_VARLEN ? 5 : (params)) | (avail) << 3 |                                     \
+          ((reply) == 0 ? 0 : (reply) == 1 ? 1 : (reply) == 2 ? 2 : (reply) == 3 ? 3 : (reply) == 9 ? 4 \
+           : (reply) == 26 ? 5 : (reply) == 189 ? 6 : 7) << 5))
+#define rcx_op_avail(op) ((u8)((rcx_opflags[rcx_op_index(op)] >> 3) & 3))
+
+/* Reply length including the reply opcode: 0 none, RCX_REPLY_VAR computed from the operands. */
+u8 rcx_op_reply(u8 op);
 
 /* Operand bytes implied by the low three bits of any opcode, known or not (6 and 7 mean 0 and 1). */
 #define rcx_op_nominal_params(op) ((u8)(((op) & 7) >= 6 ? ((op) & 7) - 6 : ((op) & 7)))
@@ -50,13 +55,16 @@ extern const struct rcx_opinfo rcx_opinfo[128];
 /* Operand bytes an instruction occupies in program code (unknown opcodes: the nominal count). */
 u8 rcx_op_params(u8 op);
 
-/* Name tables, for the host disassembler and tests only (kept out of the firmware image by the linker). */
+/* Name tables with every column of the table, for the host disassembler and tests (not in the firmware). */
 struct rcx_opname {
     u8 code;
     const char *id;
     const char *name;
     const char *lasm;
     const char *layout;
+    u8 params;  /* as in the table: RCX_VARLEN for ContinueDL */
+    u8 avail;
+    u8 reply;
 };
 extern const struct rcx_opname rcx_opnames[];
 extern const unsigned rcx_opname_count;

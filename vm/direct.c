@@ -98,12 +98,12 @@ static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
-    const struct rcx_opinfo *info = &rcx_opinfo[rcx_op_index(op)];
+    u8 avail = rcx_op_avail(op);
     u8 n = 0, i;
 
-    if (!(info->avail & RCX_DIRECT))
+    if (!(avail & RCX_DIRECT))
         return 0;                  /* unknown or program-only: not answered */
-    if (info->params != RCX_VARLEN && len < 1 + info->params)
+    if (op != RCX_OP_CONTINUE_DL && len < 1 + rcx_op_params(op))
         return 0;                  /* truncated */
     reply[0] = (u8)~cmd[0];
 
@@ -192,7 +192,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         return 0;
     default:
         ops_exec(b, NULL, cmd);
-        if (info->reply == 0)
+        if (rcx_op_reply(op) == 0)
             return 0;              /* InternMessage, SendUARTData: no reply */
         break;
     }

@@ -37,11 +37,33 @@ static void end_of_sub(struct rcx *b, struct rcx_task *t)
 }
 
 /* Sign-magnitude distances: 7 bits (+ 8 more in a second byte), bit 7 of the first byte = backwards. */
-static s32 dist_sm8(const u8 *f)  { return (f[0] & 0x80) ? -(s32)(f[0] & 0x7F) : (s32)(f[0] & 0x7F); }
-static s32 dist_sm16(const u8 *f)
+static s16 dist_sm8(const u8 *f)
 {
-    s32 d = (s32)(f[0] & 0x7F) | ((s32)f[1] << 7);
-    return (f[0] & 0x80) ? -d : d;
+    s16 d = (s16)(f[0] & 0x7F);
+    return (f[0] & 0x80) ? (s16)-d : d;
+}
+static s16 dist_sm16(const u8 *f)
+{
+    s16 d = (s16)((f[0] & 0x7F) | ((u16)f[1] << 7));
+    return (f[0] & 0x80) ? (s16)-d : d;
+}
+
+#define NO_JUMP 0xFFFFu
+#define OUTSIDE 0xFFFEu /* larger than any code object */
+
+/* The position `d` bytes from the distance field at `from`, or OUTSIDE when it falls outside 0..0xFFFD.
+ * In 16 bits: 32-bit arithmetic costs the H8/300 several times the code. */
+static u16 jump_fwd(u16 from, u16 d)
+{
+    return d >= (u16)(OUTSIDE - from) ? OUTSIDE : (u16)(from + d);
+}
+static u16 jump_to(u16 from, s16 d)
+{
+    if (d < 0) {
+        u16 m = (u16)(0u - (u16)d);
+        return m > from ? OUTSIDE : (u16)(from - m);
+    }
+    return jump_fwd(from, (u16)d);
 }
 
 /*
@@ -55,7 +77,7 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
     u8 op = (u8)(ins[0] & ~RCX_TOGGLE);
     u8 n = rcx_op_params(op);
     u16 field = (u16)(pc + 1);         /* position of the first operand */
-    s32 target = -1;                   /* a taken jump's destination */
+    u16 target = NO_JUMP;              /* a taken jump's destination */
     s16 value;
     s16 *var;
 
@@ -78,10 +100,10 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
         ops_var(b, t, ins);
         break;
     case RCX_OP_SJUMP:
-        target = field + dist_sm8(ins + 1);
+        target = jump_to(field, dist_sm8(ins + 1));
         break;
     case RCX_OP_LJUMP:
-        target = field + dist_sm16(ins + 1);
+        target = jump_to(field, dist_sm16(ins + 1));
         break;
     case RCX_OP_SDEC_JUMP_LTZ:
     case RCX_OP_LDEC_JUMP_LTZ:
@@ -89,16 +111,16 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
             break;
         *var = (s16)(u16)((u16)*var - 1u);
         if (*var < 0)
-            target = field + 1 + (op == RCX_OP_SDEC_JUMP_LTZ ? dist_sm8(ins + 2) : dist_sm16(ins + 2));
+            target = jump_to((u16)(field + 1), op == RCX_OP_SDEC_JUMP_LTZ ? dist_sm8(ins + 2) : dist_sm16(ins + 2));
         break;
     case RCX_OP_SCHECK_DO:
     case RCX_OP_LCHECK_DO:
         value = source_get(b, t, ins[2] & 0x3F, ins[5]);
         if (!holds((u8)(ins[1] >> 6), source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3)), value)) {
             if (op == RCX_OP_SCHECK_DO)
-                target = field + 5 + ins[6];                          /* forward only */
+                target = jump_fwd((u16)(field + 5), ins[6]);                /* forward only */
             else
-                target = field + 5 + (s16)RCX_LE16(ins + 6);          /* signed 16-bit */
+                target = jump_to((u16)(field + 5), (s16)RCX_LE16(ins + 6)); /* signed 16-bit */
         }
         break;
     case RCX_OP_SET_LOOP:
@@ -114,7 +136,8 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
             break;                     /* no active loop level: ignored */
         if (t->loop[t->loop_depth - 1] == 0) {
             t->loop_depth--;
-            target = field + (op == RCX_OP_SCHECK_LOOP ? (s32)ins[1] : (s32)RCX_LE16(ins + 1));
+            /* Forward only: an unsigned distance, 8 or 16 bits. */
+            target = jump_fwd(field, op == RCX_OP_SCHECK_LOOP ? ins[1] : RCX_LE16(ins + 1));
         } else {
             t->loop[t->loop_depth - 1]--;
         }
@@ -146,16 +169,16 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
         break;
     case RCX_OP_SENTER_EVENT:
     case RCX_OP_LENTER_EVENT: {
-        s32 to = field + 3 + (op == RCX_OP_SENTER_EVENT ? dist_sm8(ins + 4) : dist_sm16(ins + 4));
-        if (to >= 0 && to <= size)
+        u16 to = jump_to((u16)(field + 3), op == RCX_OP_SENTER_EVENT ? dist_sm8(ins + 4) : dist_sm16(ins + 4));
+        if (to <= size)
             events_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), (u16)to);
         else
             stop(b, t);
         break;
     }
     case RCX_OP_ENTER_ACCESS: {
-        s32 to = field + 1 + dist_sm16(ins + 2);
-        if (to >= 0 && to <= size)
+        u16 to = jump_to((u16)(field + 1), dist_sm16(ins + 2));
+        if (to <= size)
             access_enter(b, t, ins[1], (u16)to);
         else
             stop(b, t);
@@ -168,15 +191,17 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
         access_exit(b, t);
         break;
     default:
-        if (rcx_opinfo[rcx_op_index(op)].avail & RCX_PROGRAM)
+        if (rcx_op_avail(op) & RCX_PROGRAM)
             ops_exec(b, t, ins);
         /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
         break;
     }
 
-    if (target >= 0 && target <= size)
-        t->pc = (u16)target;
-    else if (target != -1)
+    if (target == NO_JUMP)
+        return;
+    if (target <= size)
+        t->pc = target;
+    else
         stop(b, t);                    /* a jump outside the code object */
 }
 

@@ -2,7 +2,8 @@
 #include "rcx_opcodes.h"
 
 const struct rcx_opname rcx_opnames[] = {
-#define RCX_OP(code, id, name, lasm, params, avail, reply, layout) { code, #id, name, lasm, layout },
+#define RCX_OP(code, id, name, lasm, params, avail, reply, layout) \
+    { code, #id, name, lasm, layout, params, avail, reply },
 #include "rcx_opcodes.def"
 #undef RCX_OP
 };

@@ -79,179 +79,189 @@ void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
         *var = arith((u8)(ins[0] & ~RCX_TOGGLE), *var, value);
 }
 
+/*
+ * One small handler per byte code, found through a table rather than a switch: on the H8/300 a large switch
+ * turns nearly every branch into a 6-byte long-branch sequence, and the handlers cost less than those.
+ * Operands are read only by the handler that knows the instruction has them.
+ */
+typedef void op_fn(struct rcx *b, struct rcx_task *t, const u8 *ins);
+
+#define OP(name) static void name(struct rcx *b, struct rcx_task *t, const u8 *ins)
+#define UNUSED_T (void)t
+#define UNUSED_INS (void)ins
+
+OP(op_ping) { UNUSED_T; UNUSED_INS; b->idle_reset = 1; }
+OP(op_stop_all) { UNUSED_T; UNUSED_INS; sched_stop_all(b); }
+OP(op_turn_off)
+{
+    UNUSED_T; UNUSED_INS;
+    if (b->power_down_min) /* ignored when the power-down time is 0 (reference-firmware.md) */
+        b->turn_off = 1;
+}
+OP(op_clear_sound) { UNUSED_T; UNUSED_INS; sound_clear(b); }
+static void set_message(struct rcx *b, u8 m)
+{
+    b->message = m;
+    events_message_changed(b); /* ClearPBMessage too: firm0328 raises a mailbox event for it */
+}
+OP(op_clear_message) { UNUSED_T; UNUSED_INS; set_message(b, 0); }
+OP(op_message) { UNUSED_T; set_message(b, ins[1]); }
+OP(op_mute) { UNUSED_T; sound_mute(b, (u8)((ins[0] & ~RCX_TOGGLE) == RCX_OP_MUTE)); }
+OP(op_clear_events) { UNUSED_T; UNUSED_INS; events_clear_all(b); }
+OP(op_out) { UNUSED_T; set_motors(b, b->out.motor, ins[1], 0); }
+OP(op_gout) { UNUSED_T; set_motors(b, b->out.global, ins[1], 0); }
+OP(op_dir) { UNUSED_T; set_motors(b, b->out.motor, ins[1], 1); }
+OP(op_gdir) { UNUSED_T; set_motors(b, b->out.global, ins[1], 1); }
+OP(op_power) { set_power(b, b->out.motor, ins[1], source_get(b, t, ins[2], ins[3])); }
+OP(op_max_power) { set_power(b, b->out.global, ins[1], source_get(b, t, ins[2], ins[3])); }
+OP(op_tx_power)
+{
+    UNUSED_T;
+    if (ins[1] <= 1)
+        b->tx_range = ins[1];
+}
+OP(op_system_sound)
+{
+    UNUSED_T;
+    if (ins[1] <= 5)
+        sound_system(b, ins[1]);
+}
+OP(op_tone) { UNUSED_T; sound_tone(b, RCX_LE16(ins + 1), ins[3]); }
+OP(op_tone_var)
+{
+    s16 *var = var_ref(b, t, ins[1]);
+    if (var)
+        sound_tone(b, (u16)*var, ins[2]);
+}
+OP(op_start) { UNUSED_T; sched_start_task(b, ins[1]); }
+OP(op_stop) { UNUSED_T; sched_stop_task(b, ins[1]); }
+OP(op_select) { sched_select_program(b, ins[1], t != NULL); }
+OP(op_clear_timer)
+{
+    UNUSED_T;
+    if (ins[1] < RCX_TIMERS)
+        b->timer[ins[1]] = 0;
+}
+OP(op_power_down)
+{
+    UNUSED_T;
+    b->power_down_min = ins[1];
+    b->idle_reset = 1;
+}
+OP(op_clear_sensor) { UNUSED_T; sensor_clear(b, ins[1]); }
+OP(op_counter)
+{
+    u8 n = ins[1], op = (u8)(ins[0] & ~RCX_TOGGLE);
+    UNUSED_T;
+    if (n >= RCX_COUNTERS)
+        return;
+    if (op == RCX_OP_CLEAR_COUNTER)
+        b->global[n] = 0;
+    else
+        b->global[n] = (s16)(u16)((u16)b->global[n] + (op == RCX_OP_INC_COUNTER ? 1u : 0xFFFFu));
+    events_counter_changed(b, n);
+}
+OP(op_watch)
+{
+    UNUSED_T;
+    if (ins[1] < 24 && ins[2] < 60) {
+        b->watch = (u16)(ins[1] * 60u + ins[2]);
+        b->watch_ms = 0;
+        display_view(b, 0); /* the watch is selected (spec p. 51) */
+    }
+}
+OP(op_sensor_type) { UNUSED_T; sensor_set_type(b, ins[1], ins[2]); }
+OP(op_sensor_mode) { UNUSED_T; sensor_set_mode(b, ins[1], ins[2]); }
+OP(op_datalog) { UNUSED_T; datalog_set(b, RCX_LE16(ins + 1)); }
+OP(op_log) { datalog_add(b, t, ins[1], ins[2]); }
+OP(op_uart)
+{
+    UNUSED_T;
+    if ((u16)ins[1] + ins[2] <= 16) /* start + size <= 16 (spec p. 60) */
+        remote_send_uart(b, ins[1], ins[2]);
+}
+OP(op_event) { events_raise(b, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2))); }
+OP(op_view)
+{
+    s16 value = source_get(b, t, ins[1], RCX_LE16(ins + 2));
+    if (value >= 0 && value <= 7)
+        display_view(b, (u8)value);
+}
+OP(op_user_view)
+{
+    UNUSED_T;
+    if (ins[2] <= 3)
+        display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
+}
+OP(op_set_event)
+{
+    UNUSED_T;
+    if (ins[1] < RCX_EVENTS && ins[2] <= 10 && event_type_valid(ins[3]))
+        events_set(b, ins[1], ins[2], ins[3]);
+}
+OP(op_calibrate)
+{
+    UNUSED_T;
+    /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
+     * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
+    if (ins[1] < RCX_EVENTS)
+        events_calibrate(b, ins[1], ins[3], ins[2], ins[4]);
+}
+OP(op_set_source)
+{
+    /* Source numbers use bits 0-5 of their byte (spec p. 86). */
+    source_set(b, t, (u8)(ins[1] & 0x3F), ins[2], source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4)));
+}
+OP(op_priority)
+{
+    if (t)
+        t->priority = ins[1];
+    (void)b;
+}
+OP(op_send_message)
+{
+    if (t)
+        remote_send_message(b, (u8)source_get(b, t, ins[1], ins[2]));
+}
+
+/* Opcodes and their handlers, in two parallel arrays (3 bytes a row on the brick). */
+static const u8 op_codes[] = {
+    RCX_OP_SUM_VAR, RCX_OP_SET_VAR, RCX_OP_SUB_VAR, RCX_OP_MUL_VAR, RCX_OP_DIV_VAR, RCX_OP_SGN_VAR,
+    RCX_OP_ABS_VAR, RCX_OP_AND_VAR, RCX_OP_OR_VAR,
+    RCX_OP_PING, RCX_OP_STOP_ALL_TASKS, RCX_OP_TURN_OFF, RCX_OP_CLEAR_SOUND, RCX_OP_CLEAR_MESSAGE, RCX_OP_MUTE,
+    RCX_OP_UNMUTE, RCX_OP_CLEAR_ALL_EVENTS, RCX_OP_ON_OFF_FLOAT, RCX_OP_CONNECT_DISCONNECT, RCX_OP_SET_DIRECTION,
+    RCX_OP_SET_GLOBAL_DIR, RCX_OP_SET_POWER, RCX_OP_SET_MAX_POWER, RCX_OP_TX_POWER, RCX_OP_PLAY_SYSTEM_SOUND,
+    RCX_OP_PLAY_TONE, RCX_OP_PLAY_TONE_VAR, RCX_OP_START_TASK, RCX_OP_STOP_TASK, RCX_OP_SELECT_PROGRAM,
+    RCX_OP_CLEAR_TIMER, RCX_OP_POWER_DOWN_TIME, RCX_OP_CLEAR_SENSOR, RCX_OP_INC_COUNTER, RCX_OP_DEC_COUNTER,
+    RCX_OP_CLEAR_COUNTER, RCX_OP_MESSAGE, RCX_OP_SET_WATCH, RCX_OP_SET_SENSOR_TYPE, RCX_OP_SET_SENSOR_MODE,
+    RCX_OP_SET_DATALOG, RCX_OP_DATALOG_NEXT, RCX_OP_SEND_UART, RCX_OP_DIRECT_EVENT, RCX_OP_SELECT_DISPLAY,
+    RCX_OP_VIEW_SOURCE, RCX_OP_SET_EVENT, RCX_OP_CALIBRATE_EVENT, RCX_OP_SET_SOURCE, RCX_OP_SET_PRIORITY,
+    RCX_OP_SEND_MESSAGE,
+};
+static op_fn *const op_fns[] = {
+    ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
+    ops_var, ops_var, ops_var,
+    op_ping, op_stop_all, op_turn_off, op_clear_sound, op_clear_message, op_mute,
+    op_mute, op_clear_events, op_out, op_gout, op_dir,
+    op_gdir, op_power, op_max_power, op_tx_power, op_system_sound,
+    op_tone, op_tone_var, op_start, op_stop, op_select,
+    op_clear_timer, op_power_down, op_clear_sensor, op_counter, op_counter,
+    op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,
+    op_datalog, op_log, op_uart, op_event, op_view,
+    op_user_view, op_set_event, op_calibrate, op_set_source, op_priority,
+    op_send_message,
+};
+RCX_STATIC_ASSERT(op_rows_match, sizeof op_codes == sizeof op_fns / sizeof op_fns[0]);
+
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
-    u8 op = (u8)(ins[0] & ~RCX_TOGGLE);
-    /* First operand, read only when the instruction has one: a lone opcode may end its buffer. */
-    u8 a = rcx_op_nominal_params(op) ? ins[1] : 0;
-    s16 value;
-    s16 *var;
+    u8 op = (u8)(ins[0] & ~RCX_TOGGLE), i;
 
-    switch (op) {
-    case RCX_OP_PING:
-        b->idle_reset = 1;
-        break;
-    case RCX_OP_STOP_ALL_TASKS:
-        sched_stop_all(b);
-        break;
-    case RCX_OP_TURN_OFF:
-        if (b->power_down_min) /* ignored when the power-down time is 0 (reference-firmware.md) */
-            b->turn_off = 1;
-        break;
-    case RCX_OP_CLEAR_SOUND:
-        sound_clear(b);
-        break;
-    case RCX_OP_CLEAR_MESSAGE:
-        b->message = 0;
-        events_message_changed(b); /* firm0328 raises a mailbox event here too */
-        break;
-    case RCX_OP_MUTE:
-        sound_mute(b, 1);
-        break;
-    case RCX_OP_UNMUTE:
-        sound_mute(b, 0);
-        break;
-    case RCX_OP_CLEAR_ALL_EVENTS:
-        events_clear_all(b);
-        break;
-    case RCX_OP_ON_OFF_FLOAT:
-        set_motors(b, b->out.motor, a, 0);
-        break;
-    case RCX_OP_CONNECT_DISCONNECT:
-        set_motors(b, b->out.global, a, 0);
-        break;
-    case RCX_OP_SET_DIRECTION:
-        set_motors(b, b->out.motor, a, 1);
-        break;
-    case RCX_OP_SET_GLOBAL_DIR:
-        set_motors(b, b->out.global, a, 1);
-        break;
-    case RCX_OP_SET_POWER:
-        set_power(b, b->out.motor, a, source_get(b, t, ins[2], ins[3]));
-        break;
-    case RCX_OP_SET_MAX_POWER:
-        set_power(b, b->out.global, a, source_get(b, t, ins[2], ins[3]));
-        break;
-    case RCX_OP_TX_POWER:
-        if (a <= 1)
-            b->tx_range = a;
-        break;
-    case RCX_OP_PLAY_SYSTEM_SOUND:
-        if (a <= 5)
-            sound_system(b, a);
-        break;
-    case RCX_OP_PLAY_TONE:
-        sound_tone(b, RCX_LE16(ins + 1), ins[3]);
-        break;
-    case RCX_OP_PLAY_TONE_VAR:
-        if ((var = var_ref(b, t, a)) != NULL)
-            sound_tone(b, (u16)*var, ins[2]);
-        break;
-    case RCX_OP_START_TASK:
-        sched_start_task(b, a);
-        break;
-    case RCX_OP_STOP_TASK:
-        sched_stop_task(b, a);
-        break;
-    case RCX_OP_SELECT_PROGRAM:
-        sched_select_program(b, a, t != NULL);
-        break;
-    case RCX_OP_CLEAR_TIMER:
-        if (a < RCX_TIMERS)
-            b->timer[a] = 0;
-        break;
-    case RCX_OP_POWER_DOWN_TIME:
-        b->power_down_min = a;
-        b->idle_reset = 1;
-        break;
-    case RCX_OP_CLEAR_SENSOR:
-        sensor_clear(b, a);
-        break;
-    case RCX_OP_INC_COUNTER:
-    case RCX_OP_DEC_COUNTER:
-    case RCX_OP_CLEAR_COUNTER:
-        if (a < RCX_COUNTERS) {
-            if (op == RCX_OP_CLEAR_COUNTER)
-                b->global[a] = 0;
-            else
-                b->global[a] = (s16)(u16)((u16)b->global[a] + (op == RCX_OP_INC_COUNTER ? 1u : 0xFFFFu));
-            events_counter_changed(b, a);
+    for (i = 0; i < sizeof op_codes; i++) {
+        if (op_codes[i] == op) {
+            op_fns[i](b, t, ins);
+            return 1;
         }
-        break;
-    case RCX_OP_MESSAGE:
-        b->message = a;
-        events_message_changed(b);
-        break;
-    case RCX_OP_SET_WATCH:
-        if (a < 24 && ins[2] < 60) {
-            b->watch = (u16)(a * 60u + ins[2]);
-            b->watch_ms = 0;
-            display_view(b, 0); /* the watch is selected (spec p. 51) */
-        }
-        break;
-    case RCX_OP_SET_SENSOR_TYPE:
-        sensor_set_type(b, a, ins[2]);
-        break;
-    case RCX_OP_SET_SENSOR_MODE:
-        sensor_set_mode(b, a, ins[2]);
-        break;
-    case RCX_OP_SET_DATALOG:
-        datalog_set(b, RCX_LE16(ins + 1));
-        break;
-    case RCX_OP_DATALOG_NEXT:
-        datalog_add(b, t, a, ins[2]);
-        break;
-    case RCX_OP_SEND_UART:
-        if ((u16)a + ins[2] <= 16) /* start + size <= 16 (spec p. 60) */
-            remote_send_uart(b, a, ins[2]);
-        break;
-    case RCX_OP_DIRECT_EVENT:
-        events_raise(b, (u16)source_get(b, t, a, RCX_LE16(ins + 2)));
-        break;
-    case RCX_OP_SELECT_DISPLAY:
-        value = source_get(b, t, a, RCX_LE16(ins + 2));
-        if (value >= 0 && value <= 7)
-            display_view(b, (u8)value);
-        break;
-    case RCX_OP_VIEW_SOURCE:
-        if (ins[2] <= 3)
-            display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
-        break;
-    case RCX_OP_SET_EVENT:
-        if (a < RCX_EVENTS && ins[2] <= 10 && event_type_valid(ins[3]))
-            events_set(b, a, ins[2], ins[3]);
-        break;
-    case RCX_OP_CALIBRATE_EVENT:
-        /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
-         * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
-        if (a < RCX_EVENTS)
-            events_calibrate(b, a, ins[3], ins[2], ins[4]);
-        break;
-    case RCX_OP_SET_VAR:
-    case RCX_OP_SUM_VAR:
-    case RCX_OP_SUB_VAR:
-    case RCX_OP_DIV_VAR:
-    case RCX_OP_MUL_VAR:
-    case RCX_OP_SGN_VAR:
-    case RCX_OP_ABS_VAR:
-    case RCX_OP_AND_VAR:
-    case RCX_OP_OR_VAR:
-        ops_var(b, t, ins);
-        break;
-    case RCX_OP_SET_SOURCE:
-        /* Source numbers use bits 0-5 of their byte (spec p. 86). */
-        source_set(b, t, (u8)(a & 0x3F), ins[2], source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4)));
-        break;
-    case RCX_OP_SET_PRIORITY:
-        if (t)
-            t->priority = a;
-        break;
-    case RCX_OP_SEND_MESSAGE:
-        if (t)
-            remote_send_message(b, (u8)source_get(b, t, a, ins[2]));
-        break;
-    default:
-        return 0;
     }
-    return 1;
+    return 0;
 }
