@@ -27,6 +27,12 @@ static unsigned known_code(u8 obj, u8 *out)
 struct rcx *fuzz_populate(void)
 {
     struct rcx *b = brick_new();
+    fuzz_fill(b);
+    return b;
+}
+
+void fuzz_fill(struct rcx *b)
+{
     u8 code[64], cmd[8];
     unsigned prog, n, i;
 
@@ -55,7 +61,6 @@ struct rcx *fuzz_populate(void)
     }
     if (b->log_count != FUZZ_LOGGED + 1)
         fuzz_fail("populate datalog");
-    return b;
 }
 
 void fuzz_snapshot(const struct rcx *b, struct fuzz_snapshot *s)

@@ -21,6 +21,9 @@ struct fuzz_snapshot {
 /* A fresh brick with a task or sub of known bytes in most objects of every slot, and a datalog. */
 struct rcx *fuzz_populate(void);
 
+/* The same contents put into an existing, freshly initialised machine. */
+void fuzz_fill(struct rcx *b);
+
 void fuzz_snapshot(const struct rcx *b, struct fuzz_snapshot *s);
 
 /* Abort unless every object not marked in `touched` is byte-identical to the snapshot. */

@@ -44,7 +44,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
 {
     struct fake_hal *h = fake_hal_of(b);
     unsigned i;
-    for (i = 0; i < len && h->ir_len < FAKE_LOG; i++)
+    for (i = 0; i < len && h->ir_len < FAKE_IR_LOG; i++)
         h->ir[h->ir_len++] = data[i];
     h->ir_mode = mode;
 }

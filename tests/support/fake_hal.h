@@ -9,6 +9,7 @@
 #include "hal.h"
 
 #define FAKE_LOG 256
+#define FAKE_IR_LOG 2048 /* several framed replies: a memory map alone is 383 bytes on the air */
 
 struct fake_hal {
     u8 motor_mode[3], motor_level[3];  /* last hal_motor() per port */
@@ -19,7 +20,7 @@ struct fake_hal {
     u16 sound_calls;
     u8 lcd[HAL_LCD_BYTES];
     u16 lcd_calls;
-    u8 ir[FAKE_LOG];                   /* every byte handed to hal_ir_send(), in order */
+    u8 ir[FAKE_IR_LOG];                /* every byte handed to hal_ir_send(), in order */
     u16 ir_len;
     u8 ir_mode;                        /* mode of the last hal_ir_send() */
     u8 ir_busy;                        /* what hal_ir_busy() answers */
