@@ -17,8 +17,7 @@ static void stop_tasks_in_sub(struct rcx *b, u8 sub)
     u8 n;
     for (n = 0; n < RCX_TASKS; n++) {
         struct rcx_task *t = &b->task[n];
-        if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB &&
-            (sub == RCX_NO_SUB || t->sub == sub || (t->has_ret && t->ret_sub == sub)))
+        if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB && (t->sub == sub || (t->has_ret && t->ret_sub == sub)))
             sched_stop_task(b, n);
     }
 }
@@ -41,7 +40,7 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
         return DL_BAD_NUMBER;
     obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
-    if ((u32)size > (u32)mem_free(b) + mem_obj_size(b, obj))
+    if (size > mem_free(b) && (u16)(size - mem_free(b)) > mem_obj_size(b, obj))
         return DL_NO_MEMORY;       /* refused: the old code stays as it was */
     if (is_task)
         sched_stop_task(b, n);
@@ -117,27 +116,22 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         n = 2;
         break;
     case RCX_OP_DELETE_ALL_TASKS:
-        sched_stop_all(b);
-        for (i = 0; i < RCX_TASKS; i++)
-            delete_obj(b, rcx_obj_task(b->prog, i));
-        break;
-    case RCX_OP_DELETE_ALL_SUBS:
-        stop_tasks_in_sub(b, RCX_NO_SUB);
-        for (i = 0; i < RCX_SUBS; i++)
-            delete_obj(b, rcx_obj_sub(b->prog, i));
-        break;
     case RCX_OP_DELETE_TASK:
-        if (cmd[1] < RCX_TASKS) {
-            sched_stop_task(b, cmd[1]);
-            delete_obj(b, rcx_obj_task(b->prog, cmd[1]));
+    case RCX_OP_DELETE_ALL_SUBS:
+    case RCX_OP_DELETE_SUB: {
+        /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
+        u8 tasks = op == RCX_OP_DELETE_ALL_TASKS || op == RCX_OP_DELETE_TASK;
+        u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
+        u8 first = (op & 7) ? cmd[1] : 0, last = (op & 7) ? (u8)(cmd[1] + 1) : limit;
+        for (i = first; i < last && i < limit; i++) {
+            if (tasks)
+                sched_stop_task(b, i);
+            else
+                stop_tasks_in_sub(b, i);
+            delete_obj(b, tasks ? rcx_obj_task(b->prog, i) : rcx_obj_sub(b->prog, i));
         }
         break;
-    case RCX_OP_DELETE_SUB:
-        if (cmd[1] < RCX_SUBS) {
-            stop_tasks_in_sub(b, cmd[1]);
-            delete_obj(b, rcx_obj_sub(b->prog, cmd[1]));
-        }
-        break;
+    }
     case RCX_OP_POLL: {
         /* Task locals are not pollable: firm0328 answers 0x8000 for them (reference-firmware.md). */
         s16 v = (cmd[1] == 0 && cmd[2] >= RCX_GLOBALS && cmd[2] < RCX_VARS) ? (s16)-32768
