@@ -8,61 +8,75 @@
 #include "sources.h"
 
 #define S DISPLAY_SEG
+#define BODY S(0, 1) /* the figure's body, always lit: where a table entry must light nothing new */
 
-/* Segments a-g of digit positions 0 (program number) and 1-4 (1 rightmost), rcx-hardware.md §3.6. Position 5 is
- * only the minus sign left of a four-digit number; its other entries repeat that segment and are never used. */
-static const u8 digit_segs[6][7] = {
-    { S(1, 4), S(2, 5), S(2, 7), S(1, 7), S(4, 7), S(4, 5), S(1, 5) },
-    { S(0, 4), S(4, 1), S(4, 3), S(0, 7), S(5, 7), S(5, 5), S(0, 5) },
-    { S(1, 0), S(5, 1), S(5, 3), S(1, 3), S(6, 7), S(6, 5), S(1, 1) },
-    { S(3, 0), S(8, 1), S(8, 3), S(3, 3), S(8, 7), S(8, 5), S(3, 1) },
-    { S(3, 4), S(7, 1), S(7, 3), S(3, 7), S(7, 7), S(7, 5), S(3, 5) },
-    { S(7, 6), S(7, 6), S(7, 6), S(7, 6), S(7, 6), S(7, 6), S(7, 6) },
+/*
+ * Segments g, a, b, c, d, e, f (g first: position 5 has nothing else) of digit positions 0 (program number) and 1-4
+ * (1 rightmost), rcx-hardware.md §3.6, then position 5: only the minus sign left of a four-digit number.
+ */
+static const u8 digit_segs[5 * 7 + 1] = {
+    S(1, 5), S(1, 4), S(2, 5), S(2, 7), S(1, 7), S(4, 7), S(4, 5),
+    S(0, 5), S(0, 4), S(4, 1), S(4, 3), S(0, 7), S(5, 7), S(5, 5),
+    S(1, 1), S(1, 0), S(5, 1), S(5, 3), S(1, 3), S(6, 7), S(6, 5),
+    S(3, 1), S(3, 0), S(8, 1), S(8, 3), S(3, 3), S(8, 7), S(8, 5),
+    S(3, 5), S(3, 4), S(7, 1), S(7, 3), S(3, 7), S(7, 7), S(7, 5),
+    S(7, 6),
 };
 
-/* Seven-segment shapes of 0-9 and the minus, bit 0 = a ... bit 6 = g. */
-static const u8 font[11] = { 0x3F, 0x06, 0x5B, 0x4F, 0x66, 0x6D, 0x7D, 0x07, 0x7F, 0x6F, 0x40 };
+/* Seven-segment shapes of 0-9 and the minus, bit 0 = g, bit 1 = a ... bit 6 = f. */
+static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
 #define MINUS 10
 
-/* Decimal point for 1, 2, 3 decimal places: right of digit 2, 3, 4. */
-static const u8 point_segs[3] = { S(5, 6), S(6, 6), S(8, 6) };
+/* Decimal point for 0-3 decimal places: none (the figure's body, lit anyway), right of digit 2, 3, 4. */
+static const u8 point_segs[4] = { BODY, S(5, 6), S(6, 6), S(8, 6) };
 
-/* Indicators: the marks of views 1-6 (input 1-3 selected, output A-C selected), then input 1-3 active (a sensor type
- * is set), output A-C reverse arrows, forward arrows, and the figure: walking (arms, body, two legs), standing (body,
- * one leg). */
+/*
+ * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
+ * their entries light the figure's body, which is lit anyway), then input 1-3 active (a sensor type is set), output
+ * A-C reverse arrows, forward arrows.
+ */
 static const u8 marks[] = {
-    S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6),
+    BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
-    S(0, 0), S(0, 1), S(0, 3),
-    S(0, 1), S(0, 2),
 };
-#define VIEW_SELECTED 0 /* + view - 1 */
-#define INPUT_ACTIVE 6
-#define OUTPUT_REV 9
-#define OUTPUT_FWD 12
-#define FIGURE_WALKING 15
-#define FIGURE_STANDING 18
+#define VIEW_SELECTED 0 /* + view */
+#define INPUT_ACTIVE 8
+#define OUTPUT_REV 11
+#define OUTPUT_FWD 14
 
-static void lit(u8 *img, u8 seg)
+/* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
+ * and one leg (2). */
+#define FIGURE_WALKING 0x0B
+#define FIGURE_STANDING 0x06
+
+/*
+ * The image being composed. It is scratch, valid only during display_tick(), so it need not live in struct rcx (all
+ * bricks run on one thread); at a fixed address every segment is lit without a pointer to pass around.
+ */
+static u8 work[DISPLAY_BYTES];
+
+/* Bit n of a byte. */
+static const u8 bit[8] = { 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80 };
+
+static void lit(u8 seg)
 {
-    img[seg >> 3] |= (u8)(1u << (seg & 7));
+    work[seg >> 3] |= bit[seg & 7];
 }
 
-static void lit_list(u8 *img, const u8 *segs, u8 n)
+static void mark(u8 k)
 {
-    while (n--)
-        lit(img, *segs++);
+    lit(marks[k]);
 }
 
-static void digit(u8 *img, u8 pos, u8 glyph)
+static void digit(u8 pos, u8 glyph)
 {
-    const u8 *segs = digit_segs[pos];
+    const u8 *segs = digit_segs + pos * 7;
     u8 shape = font[glyph];
     for (; shape; shape >>= 1, segs++)
         if (shape & 1)
-            lit(img, *segs);
+            lit(*segs);
 }
 
 /*
@@ -70,24 +84,26 @@ static void digit(u8 *img, u8 pos, u8 glyph)
  * point needs ("0.05"), the minus sign in the middle segment left of the first digit. Magnitudes above 9999 show as
  * "----": a clamped 9999 would look like a real reading.
  */
-static void number(u8 *img, s16 v, u8 places)
+static __attribute__((noinline)) void number(s16 v, u8 places)
 {
-    u16 u = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
-    u8 pos = 1;
+    u16 u = v < 0 ? (u16)(0u - (u16)v) : (u16)v, q;
+    u8 pos = 1, d;
 
     if (u > DISPLAY_MAX) {
         for (; pos <= 4; pos++)
-            digit(img, pos, MINUS);
+            digit(pos, MINUS);
         return;
     }
+    lit(point_segs[places]);
+    places++; /* digits shown at least */
     do {
-        digit(img, pos++, (u8)(u % 10));
-        u /= 10;
-    } while (u || pos <= places + 1);
-    if (places)
-        lit(img, point_segs[places - 1]);
+        q = u / 10;
+        d = (u8)((u8)u - (u8)q * 10u); /* u % 10 without a second division */
+        u = q;
+        digit(pos++, d);
+    } while (u || pos <= places);
     if (v < 0)
-        digit(img, pos, MINUS);
+        digit(pos, MINUS);
 }
 
 static u8 program_running(const struct rcx *b)
@@ -99,46 +115,48 @@ static u8 program_running(const struct rcx *b)
     return 0;
 }
 
-static void compose(struct rcx *b, u8 *img)
+static void compose(struct rcx *b)
 {
-    const struct rcx_display *d = &b->display;
-    u8 i, mode, view = d->view, places = 0;
+    const struct rcx_sensor *s;
+    u8 i, mode, view, places;
     s16 v;
 
-    memcpy(img, d->marks, DISPLAY_BYTES);
-    digit(img, 0, (u8)(b->prog + 1));
+    memcpy(work, b->display.marks, DISPLAY_BYTES);
+    digit(0, (u8)(b->prog + 1));
     /* The running figure walks (alternating with standing every 320 ms) while any task runs or waits. */
-    if (program_running(b) && (b->ticks10 & 0x20))
-        lit_list(img, marks + FIGURE_WALKING, 3);
+    if ((b->ticks10 & 0x20) && program_running(b))
+        work[0] |= FIGURE_WALKING;
     else
-        lit_list(img, marks + FIGURE_STANDING, 2);
+        work[0] |= FIGURE_STANDING;
     for (i = 0; i < RCX_SENSORS; i++) {
         if (b->sensor[i].type != SENSOR_NONE)
-            lit(img, marks[INPUT_ACTIVE + i]);
+            mark(INPUT_ACTIVE + i);
         mode = outputs_mode(b, i);
         if (mode == HAL_MOTOR_REV)
-            lit(img, marks[OUTPUT_REV + i]);
+            mark(OUTPUT_REV + i);
         if (mode == HAL_MOTOR_FWD)
-            lit(img, marks[OUTPUT_FWD + i]);
+            mark(OUTPUT_FWD + i);
     }
-    if (view - 1u < DISPLAY_USER - 1u)
-        lit(img, marks[VIEW_SELECTED + view - 1]);
+    view = b->display.view;
+    mark(VIEW_SELECTED + view);
+    /* `places` is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
-        v = (s16)(b->watch + b->watch / 60 * 40); /* hours * 100 + minutes: shown as hh.mm */
+        v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
         places = 2;
     } else if (view <= DISPLAY_INPUT_3) {
-        i = (u8)(view - DISPLAY_INPUT_1);
-        v = b->sensor[i].value;
-        if ((u8)(b->sensor[i].mode - SENSOR_MODE_CELSIUS) < 0x40) /* Celsius, Fahrenheit: tenths */
-            places = 1;
+        s = &b->sensor[view - DISPLAY_INPUT_1];
+        v = s->value;
+        places = (u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40; /* Celsius, Fahrenheit: tenths */
     } else if (view <= DISPLAY_OUTPUT_C) {
         v = (s16)(outputs_status(b, (u8)(view - DISPLAY_OUTPUT_A)) & RCX_MOTOR_POWER);
+        places = 0;
     } else {
         /* Reading the random source would advance the program's random sequence at every refresh. */
-        v = d->user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, d->user_source, d->user_index);
-        places = d->user_precision;
+        v = b->display.user_source == RCX_SRC_RANDOM ? 0 :
+            source_get(b, NULL, b->display.user_source, b->display.user_index);
+        places = b->display.user_precision;
     }
-    number(img, v, places);
+    number(v, places);
 }
 
 void display_view(struct rcx *b, u8 view)
@@ -160,24 +178,25 @@ void display_user(struct rcx *b, u8 precision, u8 src, u16 index)
 
 void display_mark(struct rcx *b, u8 seg, u8 on)
 {
-    u8 *m = b->display.marks;
-    if (seg >= DISPLAY_BYTES * 8)
-        return;
-    m[seg >> 3] &= (u8)~(1u << (seg & 7));
-    if (on)
-        lit(m, seg);
+    u8 *m, mask;
+
+    if (seg < DISPLAY_BYTES * 8) {
+        m = &b->display.marks[seg >> 3];
+        mask = bit[seg & 7];
+        *m |= mask;
+        if (!on)
+            *m ^= mask;
+    }
 }
 
 void display_tick(struct rcx *b)
 {
-    u8 *img = b->display.work;
-
     if (++b->display.clock < DISPLAY_REFRESH_MS)
         return;
     b->display.clock = 0;
-    compose(b, img);
-    if (memcmp(img, b->display.shown, DISPLAY_BYTES)) {
-        memcpy(b->display.shown, img, DISPLAY_BYTES);
-        hal_lcd(b, img);
+    compose(b);
+    if (memcmp(work, b->display.shown, DISPLAY_BYTES)) {
+        memcpy(b->display.shown, work, DISPLAY_BYTES);
+        hal_lcd(b, b->display.shown);
     }
 }

@@ -50,7 +50,6 @@ struct rcx_display {
     u8 clock;            /* milliseconds since the last composition */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
-    u8 work[DISPLAY_BYTES];  /* the image being composed */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */

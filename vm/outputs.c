@@ -9,8 +9,11 @@
 #include "hal.h"
 
 #define APPLIED(mode, level) ((u8)((level) << 2 | (mode)))
-/* Driven forward or backward (not braked, not floating). */
-#define DRIVEN(applied) ((u8)(((applied) & 3) - HAL_MOTOR_REV) <= HAL_MOTOR_FWD - HAL_MOTOR_REV)
+/* Driven forward or backward (not braked, not floating): of the modes 0-3 only REV (1) and FWD (2) have bit 1 set in
+ * mode + 1 (a carry out of the mode bits leaves it clear). */
+#define DRIVEN(applied) ((u8)((applied) + 1) & 2)
+RCX_STATIC_ASSERT(driven_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
+                                HAL_MOTOR_BRAKE == 3);
 
 void outputs_init(struct rcx *b)
 {
@@ -25,14 +28,13 @@ void outputs_init(struct rcx *b)
 /* Motor status as firm0328 reports it: the effective output after global invert, max power and disconnect. */
 u8 outputs_status(const struct rcx *b, u8 i)
 {
-    u8 m = b->out.motor[i], g = b->out.global[i];
-    u8 power = (u8)(m & RCX_MOTOR_POWER);
+    u8 m = b->out.motor[i], g = b->out.global[i], power = (u8)(m & RCX_MOTOR_POWER), max = (u8)(g & RCX_MOTOR_POWER);
     u8 status;
 
-    if (power > (g & RCX_MOTOR_POWER))
-        power = (u8)(g & RCX_MOTOR_POWER);
+    if (power > max)
+        power = max;
     status = (u8)((m & (RCX_MOTOR_ON | RCX_MOTOR_BRAKE)) | power);
-    if ((m ^ g ^ RCX_MOTOR_FWD) & RCX_MOTOR_FWD) /* forward xor globally reversed */
+    if (!((m ^ g) & RCX_MOTOR_FWD)) /* forward xor globally reversed */
         status |= RCX_MOTOR_FWD;
     if (!(g & RCX_MOTOR_ON) && (m & RCX_MOTOR_ON))
         status = (u8)((status & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
@@ -62,14 +64,14 @@ static u8 wanted(const struct rcx *b, u8 i)
  */
 static void apply(struct rcx *b, u8 i)
 {
-    u8 want = wanted(b, i), now = b->out.applied[i];
+    u8 want = wanted(b, i), now = b->out.applied[i], *pause = &b->out.pause[i];
 
-    if (b->out.pause[i]) {
+    if (*pause) {
         if (DRIVEN(want))
             return;
-        b->out.pause[i] = 0;
-    } else if (DRIVEN(now) && DRIVEN(want) && ((now ^ want) & 3)) {
-        b->out.pause[i] = OUTPUTS_REVERSE_PAUSE_MS;
+        *pause = 0;
+    } else if (!(~(now ^ want) & 3) && DRIVEN(now)) { /* driven one way, now wanted the other */
+        *pause = OUTPUTS_REVERSE_PAUSE_MS;
         want = APPLIED(HAL_MOTOR_BRAKE, 7);
     }
     if (want != now) {
@@ -100,25 +102,26 @@ u8 outputs_global_status(const struct rcx *b, u8 i)
 }
 
 #define ALL_MOTORS 0x07
+#define STOP 0 /* for rewrite(): off, braked, the rest of the register kept */
 
-/* Rewrite the registers of the motors in `list` (bit 0 A, 1 B, 2 C): clear `off`, then set `on`. */
-static void rewrite(struct rcx *b, u8 list, u8 off, u8 on)
+/* Set the registers of the motors in `list` (bit 0 A, 1 B, 2 C) to `value`, or stop them (STOP). */
+static void rewrite(struct rcx *b, u8 list, u8 value)
 {
     u8 *m;
     for (m = b->out.motor, list &= ALL_MOTORS; list; list >>= 1, m++)
         if (list & 1)
-            *m = (u8)((*m & ~off) | on);
+            *m = value != STOP ? value : (u8)((*m & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
     outputs_changed(b);
 }
 
 void outputs_program_start(struct rcx *b)
 {
-    rewrite(b, ALL_MOTORS, 0xFF, RCX_MOTOR_FWD | RCX_MOTOR_BRAKE | 7);
+    rewrite(b, ALL_MOTORS, RCX_MOTOR_FWD | RCX_MOTOR_BRAKE | 7);
 }
 
 void outputs_program_stop(struct rcx *b)
 {
-    rewrite(b, ALL_MOTORS, RCX_MOTOR_ON, RCX_MOTOR_BRAKE);
+    rewrite(b, ALL_MOTORS, STOP);
 }
 
 /*
@@ -132,12 +135,12 @@ void outputs_remote(struct rcx *b, u8 fwd_mask, u8 rev_mask)
         outputs_program_start(b);
         return;
     }
-    rewrite(b, (u8)(rev_mask & ~fwd_mask), 0xFF, RCX_MOTOR_ON | 7);
-    rewrite(b, fwd_mask, 0xFF, RCX_MOTOR_ON | RCX_MOTOR_FWD | 7);
+    rewrite(b, (u8)(rev_mask & ~fwd_mask), RCX_MOTOR_ON | 7);
+    rewrite(b, fwd_mask, RCX_MOTOR_ON | RCX_MOTOR_FWD | 7);
 }
 
 /* Resource bits of spec p. 106: 0x01 A, 0x02 B, 0x08 C (0x04 is the sound). */
 void outputs_revoked(struct rcx *b, u8 resources)
 {
-    rewrite(b, (u8)((resources & 0x03) | ((resources >> 1) & 0x04)), RCX_MOTOR_ON, RCX_MOTOR_BRAKE);
+    rewrite(b, (u8)((resources & 0x03) | ((resources >> 1) & 0x04)), STOP);
 }

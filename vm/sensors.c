@@ -38,15 +38,16 @@ struct temp_piece {
 #define TEMP_PIECE(start, k, d) \
     { start, (s16)((TEMP_B(start, k, d) - TEMP_F(start, k, d)) / 100 + 1), (u8)(-(k) - 100), \
       (u8)(100 - TEMP_F(start, k, d)) }
-static const struct temp_piece temp_table[] = {
-    TEMP_PIECE(290, -261, 145200),
-    TEMP_PIECE(340, -194, 123000),
-    TEMP_PIECE(390, -144, 103500),
-    TEMP_PIECE(478, -123, 93600),
-    TEMP_PIECE(520, -107, 85200),
-    TEMP_PIECE(790, -134, 106600),
+#define TEMP_LOW 290   /* raw below this ... */
+#define TEMP_HIGH 927  /* ... or above this has no temperature */
+static const struct temp_piece temp_table[] = { /* from the top down */
     TEMP_PIECE(886, -175, 142600),
-    { 928, 0, 0, 0 } /* end of the table: raw 928 and above are invalid */
+    TEMP_PIECE(790, -134, 106600),
+    TEMP_PIECE(520, -107, 85200),
+    TEMP_PIECE(478, -123, 93600),
+    TEMP_PIECE(390, -144, 103500),
+    TEMP_PIECE(340, -194, 123000),
+    TEMP_PIECE(TEMP_LOW, -261, 145200),
 };
 
 static s16 celsius(u16 raw)
@@ -55,14 +56,14 @@ static s16 celsius(u16 raw)
     u16 y, q;
     s16 e;
 
-    if (raw < temp_table[0].start || raw >= temp_table[7].start)
+    if (raw < TEMP_LOW || raw > TEMP_HIGH)
         return SENSOR_TEMP_INVALID;
-    while (raw >= p[1].start)
+    while (raw < p->start)
         p++;
     y = (u16)((raw - p->start) * (p->slope + 100u) + p->frac);
     q = (u16)(y / 100);
     e = (s16)(p->base - (s16)q);
-    if (y != q * 100u && e > 0) /* one division: the brick has no divide instruction for this */
+    if ((u8)((u8)y - (u8)q * 100u) && e > 0) /* y - 100 q is 0-99: low bytes suffice, an 8-bit multiply */
         e--;
     return e;
 }
@@ -78,44 +79,62 @@ static s16 celsius(u16 raw)
 static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
 #define rotation_phase(raw) phase_of[(raw) >> 6]
 
-/* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
-static void restart(struct rcx_sensor *s)
+/* Input n, or NULL when there is no such input. Shared by the entry points, so kept out of line. */
+static __attribute__((noinline)) struct rcx_sensor *input(struct rcx *b, u8 n)
 {
-    u8 i;
-    for (i = 0; i < SENSOR_DT_MS; i++)
-        s->past[i] = s->raw;
-    s->phase = rotation_phase(s->raw);
+    return n < RCX_SENSORS ? &b->sensor[n] : NULL;
 }
 
-void sensor_clear(struct rcx *b, u8 n)
+struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
 {
-    if (n < RCX_SENSORS) {
-        b->sensor[n].value = 0;
-        b->sensor[n].stale = 1;
+    struct rcx_sensor *s = input(b, n);
+
+    if (s) {
+        s->value = 0;
+        s->stale = 1;
     }
+    return s;
 }
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type)
 {
     struct rcx_sensor *s;
+    u16 raw;
 
-    if (n >= RCX_SENSORS || type >= sizeof default_mode)
+    if (type >= sizeof default_mode || !(s = sensor_clear(b, n)))
         return;
-    s = &b->sensor[n];
     s->type = type;
     s->mode = default_mode[type];
     s->boolean = 0;
-    restart(s);
-    sensor_clear(b, n);
+    /* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
+    raw = s->raw;
+    s->past[0] = raw;
+    s->past[1] = raw;
+    s->past[2] = raw;
+    s->phase = rotation_phase(raw);
     /* Light and rotation sensors are active: they take their power from the input (rcx-hardware.md §3.3). */
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
 
 void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
 {
-    if (n < RCX_SENSORS)
-        b->sensor[n].mode = mode;
-    sensor_clear(b, n);
+    struct rcx_sensor *s = sensor_clear(b, n);
+
+    if (s)
+        s->mode = mode;
+}
+
+/* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
+static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
+{
+    s16 v;
+
+    if (mode == SENSOR_MODE_PERCENT)
+        return raw < PERCENT_FULL_BELOW ? 100 : (s16)((1023u - raw) * 25u / 156u);
+    v = celsius(raw);
+    if (mode == SENSOR_MODE_FAHRENHEIT && v != SENSOR_TEMP_INVALID)
+        v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
+    return v;
 }
 
 /*
@@ -134,7 +153,7 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
         if (raw > BOOL_OFF_ABOVE)
             return 0;
     } else {
-        if (raw > 1023 - slope || (s16)(raw - then) > slope)
+        if (raw > 1023u - slope || (s16)(raw - then) > slope)
             return 0;
         if (raw < slope || (s16)(then - raw) > slope)
             return 1;
@@ -142,40 +161,34 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* Steps the rotation sensor turned since the last valid sample: +1, -1 or 0. */
+/* Steps the rotation sensor turned since the last valid sample: +1, -1 or 0, by the change of phase (mod 4). A jump of
+ * two phases cannot tell the direction and counts nothing. */
+static const s8 step_of[4] = { 0, 1, 0, -1 };
+
 static s8 rotation_step(struct rcx_sensor *s, u16 raw)
 {
-    u8 phase = rotation_phase(raw), turn = (u8)((phase - s->phase) & 3), was = s->phase;
+    u8 phase = rotation_phase(raw), was = s->phase;
 
     if (phase == PHASE_NONE)
         return 0;
     s->phase = phase;
-    if (was == PHASE_NONE || turn == 2)
-        return 0;
-    return (s8)(turn == 3 ? -1 : turn);
+    return was == PHASE_NONE ? 0 : step_of[(phase - was) & 3];
 }
 
-void sensor_sample(struct rcx *b, u8 n, u16 raw)
+RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
+
+static void sample(struct rcx_sensor *s, u16 raw)
 {
-    struct rcx_sensor *s;
-    u8 was, mode, same;
+    u8 was, mode;
     s8 step;
     s16 v;
     u16 then;
 
-    if (n >= RCX_SENSORS)
-        return;
-    s = &b->sensor[n];
-    raw &= 0x3FF;
-    same = raw == s->raw && !s->stale;
-    s->stale = 0;
-    s->raw = raw;
-    then = s->past[s->past_at];
-    s->past[s->past_at] = raw;
-    if (++s->past_at >= SENSOR_DT_MS)
-        s->past_at = 0;
+    then = s->past[0]; /* the samples of the last SENSOR_DT_MS milliseconds, oldest first */
+    s->past[0] = s->past[1];
+    s->past[1] = s->past[2];
+    s->past[2] = raw;
     step = rotation_step(s, raw);
-
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
     v = s->value;
@@ -190,15 +203,20 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
         v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
     else if (mode == SENSOR_MODE_ANGLE)
         v = (s16)(v + step);
-    else if (same)
-        ; /* conversions cost divisions, which the brick does in software: skip them while raw holds still */
-    else if (mode == SENSOR_MODE_PERCENT)
-        v = raw < PERCENT_FULL_BELOW ? 100 : (s16)((1023u - raw) * 25u / 156u);
-    else {
-        v = celsius(raw);
-        if (mode == SENSOR_MODE_FAHRENHEIT && v != SENSOR_TEMP_INVALID)
-            v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
-    }
+    else if (raw != s->raw || s->stale) /* conversions cost divisions, which the brick does in software: skip them
+                                           while raw holds still */
+        v = converted(mode, raw);
     s->value = v;
-    events_input(b, n);
+    s->stale = 0;
+    s->raw = raw;
+}
+
+void sensor_sample(struct rcx *b, u8 n, u16 raw)
+{
+    struct rcx_sensor *s = input(b, n);
+
+    if (s) {
+        sample(s, raw & 0x3FF);
+        events_input(b, n);
+    }
 }

@@ -35,20 +35,19 @@ enum sensor_type { SENSOR_NONE = 0, SENSOR_TOUCH, SENSOR_TEMPERATURE, SENSOR_LIG
 #define SENSOR_DT_MS 3
 
 struct rcx_sensor {
+    s16 value;      /* source 9 */
+    u16 raw;        /* source 12: last 10-bit sample */
+    u16 past[SENSOR_DT_MS]; /* the last samples, oldest first, for the change rate */
     u8 type;        /* source 10 */
     u8 mode;        /* source 11 */
-    u16 raw;        /* source 12: last 10-bit sample */
-    s16 value;      /* source 9 */
     u8 boolean;     /* source 13 */
     u8 stale;       /* the value must be converted again even if raw has not changed */
     u8 phase;       /* rotation sensor phase 0-3 of the last valid sample */
-    u8 past_at;     /* slot of past[] holding the oldest sample */
-    u16 past[SENSOR_DT_MS]; /* the last samples, for the change rate */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
 void sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: the value restarts from 0 */
-void sensor_clear(struct rcx *b, u8 n);              /* ClearSensorValue */
+struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
 
 #endif

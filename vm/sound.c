@@ -1,41 +1,48 @@
 /*
  * The sound queue. A system sound takes one queue entry, however many notes it has: the sweeps have ten, and
  * queued note by note they would not fit the eight entries, let alone leave room for a program's own tones.
+ * The entry playing is always queue[0]; when it is over the others move up one place.
  */
+#include "rcx_string.h"
 #include "rcx.h"
 #include "hal.h"
 
-/* Tones of the system sounds (rcx-hardware.md §3.7): the ten sweep steps from high to low, then click and buzz. */
-static const u16 sound_tones[] = { 1389, 1295, 1196, 1096, 996, 893, 796, 694, 598, 498, 1984, 99 };
+/* Tones of the system sounds (rcx-hardware.md §3.7): the ten sweep steps from high to low, click, buzz, and a rest. */
+static const u16 sound_tones[] = { 1389, 1295, 1196, 1096, 996, 893, 796, 694, 598, 498, 1984, 99, 0 };
+#define TONE_BEEP 4   /* 996 Hz, also a sweep step */
 #define TONE_CLICK 10
 #define TONE_BUZZ 11
-#define TONE_BEEP 4   /* 996 Hz, also a sweep step */
+#define REST 12
 
-/* A system sound: `count` notes from sound_tones[first] on, `stride` apart, each `len` long and followed by a rest
- * of `gap` if gap is not 0. Lengths in 10 ms. */
-struct system_sound {
-    u8 first;
-    s8 stride;
-    u8 count;
-    u8 len;
-    u8 gap;
-};
+/* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. */
+static const u8 note_lengths[] = { 0, 1, 3, 5, 6, 15, 100 };
+#define NOTE(tone, code) ((u8)((code) << 4 | (tone)))
+#define SWEEP(code, a, b, c, d, e, f, g, h, i, j) NOTE(a, code), NOTE(b, code), NOTE(c, code), NOTE(d, code), \
+    NOTE(e, code), NOTE(f, code), NOTE(g, code), NOTE(h, code), NOTE(i, code), NOTE(j, code)
 
-/* Numbered as nqc's SOUND_* constants and rcx-hardware.md §3.7. Spec p. 29 lists 2 as "sweep up" and 3 as "sweep
- * down"; the ROM tables and nqc both have 2 falling and 3 rising, and programs are written against nqc. */
-static const struct system_sound system_sounds[SOUND_SYSTEM_SOUNDS] = {
-    { TONE_CLICK, 0, 1, 1, 3 },   /* key click: 10 ms, 30 ms silence */
-    { TONE_BEEP, 0, 2, 15, 5 },   /* beep-beep: 150 ms on, 50 ms off, twice */
-    { 0, 1, 10, 6, 0 },           /* sweep down: 60 ms per step */
-    { 9, -1, 10, 6, 0 },          /* sweep up */
-    { TONE_BUZZ, 0, 1, 100, 0 },  /* error buzz: 1 s */
-    { 9, -1, 10, 3, 0 },          /* fast sweep up: 30 ms per step */
+/*
+ * The system sounds, numbered as nqc's SOUND_* constants and rcx-hardware.md §3.7, as notes from system_start[n]
+ * to the next 0. Spec p. 29 lists 2 as "sweep up" and 3 as "sweep down"; the ROM tables and nqc both have 2 falling
+ * and 3 rising, and programs are written against nqc. The 0 in front is where a tone's entry points once its one
+ * note has started.
+ */
+#define NO_NOTES 0
+static const u8 system_notes[] = {
+    0,
+    NOTE(TONE_CLICK, 1), NOTE(REST, 2), 0,                                   /* key click: 10 ms, 30 ms silence */
+    NOTE(TONE_BEEP, 5), NOTE(REST, 3), NOTE(TONE_BEEP, 5), NOTE(REST, 3), 0, /* beep-beep: 150 ms on, 50 off, twice */
+    SWEEP(4, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9), 0,                               /* sweep down: 60 ms per step */
+    SWEEP(4, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* sweep up */
+    NOTE(TONE_BUZZ, 6), 0,                                                   /* error buzz: 1 s */
+    SWEEP(2, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* fast sweep up: 30 ms per step */
 };
+static const u8 system_start[SOUND_SYSTEM_SOUNDS] = { 1, 4, 9, 20, 31, 33 };
+RCX_STATIC_ASSERT(system_notes_as_counted, sizeof system_notes == 44); /* system_start[] follows these lengths */
 
 static void enqueue(struct rcx *b, u16 hz, u8 len)
 {
     struct rcx_sound *s = &b->sound;
-    struct sound_entry *e = &s->queue[(s->head + s->count) & (SOUND_QUEUE - 1)];
+    struct sound_entry *e = &s->queue[s->count];
     if (s->count < SOUND_QUEUE) {
         e->hz = hz;
         e->len = len;
@@ -55,7 +62,7 @@ void sound_tone(struct rcx *b, u16 hz, u8 dur10)
 void sound_ui(struct rcx *b, u8 sound)
 {
     if (sound < SOUND_SYSTEM_SOUNDS)
-        enqueue(b, sound, 0);
+        enqueue(b, system_start[sound], 0);
 }
 
 void sound_system(struct rcx *b, u8 sound)
@@ -64,20 +71,19 @@ void sound_system(struct rcx *b, u8 sound)
         sound_ui(b, sound);
 }
 
+/* Start a note of hz (each note, even at the pitch before), or silence (0) unless silent already. */
 static void play(struct rcx *b, u16 hz)
 {
     if (hz || b->sound.sounding)
         hal_sound(b, hz);
-    b->sound.sounding = hz != 0;
+    b->sound.sounding = hz;
 }
 
 void sound_clear(struct rcx *b)
 {
     b->sound.count = 0;
-    b->sound.step = 0;
     b->sound.left = 0;
-    if (b->sound.sounding)
-        play(b, 0);
+    play(b, 0);
 }
 
 void sound_mute(struct rcx *b, u8 on)
@@ -87,54 +93,35 @@ void sound_mute(struct rcx *b, u8 on)
         sound_clear(b);
 }
 
-/* Note `step` of entry e: its length in 10 ms (0 once the entry is over) and its frequency in *hz. */
-static u8 note(const struct sound_entry *e, u8 step, u16 *hz)
-{
-    const struct system_sound *d;
-    u8 k = step, t;
-
-    if (e->len) {
-        *hz = e->hz;
-        return step ? 0 : e->len;
-    }
-    d = &system_sounds[e->hz];
-    if (d->gap) {
-        k >>= 1;
-        if (step & 1) {
-            *hz = 0;
-            return k < d->count ? d->gap : 0;
-        }
-    }
-    if (k >= d->count)
-        return 0;
-    for (t = d->first; k; k--)
-        t = (u8)(t + d->stride);
-    *hz = sound_tones[t];
-    return d->len;
-}
-
+/*
+ * An entry is a tone while its `len` is not 0; a system sound's entry has `hz` at its next note in system_notes[],
+ * and a tone's entry becomes one with no notes left once its note has started.
+ */
 void sound_tick(struct rcx *b)
 {
     struct rcx_sound *s = &b->sound;
-    u16 hz = 0;
-    u8 len;
+    u16 hz;
+    u8 len, code;
 
-    if (s->left) {
-        if (--s->left)
-            return;
-        s->step++;
-    }
-    while (s->count) {
-        len = note(&s->queue[s->head], s->step, &hz);
+    if (s->left && --s->left)
+        return;
+    for (; s->count; s->count--, memmove(s->queue, s->queue + 1, sizeof s->queue - sizeof s->queue[0])) {
+        hz = s->queue[0].hz;
+        len = s->queue[0].len;
+        if (len) {
+            s->queue[0].hz = NO_NOTES;
+            s->queue[0].len = 0;
+        } else {
+            code = system_notes[hz];
+            hz = sound_tones[code & 15];
+            len = note_lengths[code >> 4];
+            s->queue[0].hz++;
+        }
         if (len) {
             play(b, hz);
             s->left = (u16)(len * 10u);
             return;
         }
-        s->head = (u8)((s->head + 1) & (SOUND_QUEUE - 1));
-        s->count--;
-        s->step = 0;
     }
-    if (s->sounding)
-        play(b, 0);
+    play(b, 0);
 }

@@ -14,19 +14,18 @@ struct rcx;
 #define SOUND_MIN_HZ 31        /* tones outside 31-20 000 Hz are rests of their duration */
 #define SOUND_MAX_HZ 20000
 
-/* One queue entry: a tone (`len` in 10 ms, `hz` 0 for a rest), or system sound `hz` when `len` is 0. */
+/* One queue entry: a tone (`len` in 10 ms, `hz` 0 for a rest), or when `len` is 0 a system sound, `hz` then being
+ * the place of its next note in sound.c's table. */
 struct sound_entry {
     u16 hz;
     u8 len;
 };
 
 struct rcx_sound {
+    u16 left;      /* milliseconds left of the current note; 0 = none started (first: the most used field) */
+    u16 sounding;  /* the frequency hal_sound() was last given */
     u8 muted;      /* MuteSound: program sounds ignored, system sounds of the user interface still play */
-    u8 head;       /* queue[head] is playing or next */
-    u8 count;      /* entries queued, the playing one included */
-    u8 step;       /* note being played within queue[head] */
-    u8 sounding;   /* hal_sound() was last given a frequency, not 0 */
-    u16 left;      /* milliseconds left of the current note; 0 = none started */
+    u8 count;      /* entries queued from queue[0], the playing one included */
     struct sound_entry queue[SOUND_QUEUE];
 };
 
