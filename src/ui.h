@@ -1,4 +1,7 @@
-/* The brick's own user interface: On-Off, Run, View and Prgm buttons, power-down timer, low battery, standby. */
+/*
+ * The brick's own user interface: the On-Off, Run, View and Prgm buttons (spec p. 98 for the motors), the
+ * power-down timer (spec p. 35), PBTurnOff, and the low-battery mark.
+ */
 #ifndef RCX_UI_H
 #define RCX_UI_H
 
@@ -6,13 +9,21 @@
 
 struct rcx_brick;
 
+#define UI_MINUTE_MS 60000u
+#define UI_BATTERY_LOW_MV 6300u  /* battery mark on below this (brickOS's "low", rcx-hardware.md §3.4) */
+#define UI_BATTERY_OK_MV 6700u   /* and off again only above this ("normal"): no flicker at the threshold */
+
 struct rcx_ui {
-    u8 placeholder; /* defined by the firmware issue */
+    u16 idle_ms;     /* milliseconds into the current minute without a command or a button */
+    u8 idle_min;     /* whole minutes without one */
+    u8 off;          /* switching off was asked for (On-Off, PBTurnOff, power-down time): done by ui_poll */
+    u8 home_view;    /* the view that View comes back to after output C */
+    u8 battery_low;  /* the mark is on */
 };
 
 void ui_init(struct rcx_brick *k);
 void ui_button(struct rcx_brick *k, u8 button, u8 down);
 void ui_tick(struct rcx_brick *k);
-void ui_poll(struct rcx_brick *k); /* act on the machine's power requests (turn off, boot mode) */
+void ui_poll(struct rcx_brick *k); /* act on the machine's power requests: turn off, and standby on the brick */
 
 #endif

@@ -12,7 +12,17 @@
 
 _start:
 	orc	#0x80,ccr		; mask interrupts until the drivers are ready
-	mov.w	#_rcx_stack_top,r7	; own stack at the top of on-chip RAM; never return to the ROM
+	bra	1f
+
+; The ROM refuses to start an image that does not contain this text inside 0x8000-0xCBFF. Right after the
+; entry it sits at a fixed address (0x8004), whatever the start-up code becomes, and within two S1 records.
+	.align	1
+_rcx_knock:
+	.ascii	"Do you byte, when I knock?"
+	.byte	0
+	.align	1
+
+1:	mov.w	#_rcx_stack_top,r7	; own stack at the top of on-chip RAM; never return to the ROM
 	sub.b	r0l,r0l
 	mov.b	r0l,@0xc7:8		; IER (FFC7) = 0: IRQ0-2 off
 
@@ -25,28 +35,30 @@ _start:
 	cmp.w	r2,r0
 	bne	1b
 
-	; Clear .bss; the linker script aligns both ends to words.
+	; Clear .bss and the variables in on-chip RAM; the linker script aligns all ends to words.
+	sub.w	r1,r1
 	mov.w	#_rcx_bss_start,r0
 	mov.w	#_rcx_bss_end,r2
-	sub.w	r1,r1
-	bra	3f
-2:	mov.w	r1,@r0
-	adds	#2,r0
-3:	cmp.w	r2,r0
-	bne	2b
+	bsr	_rcx_clear
+	mov.w	#_rcx_onchip_start,r0
+	mov.w	#_rcx_onchip_end,r2
+	bsr	_rcx_clear
 
 	jsr	@_main
 4:	orc	#0x80,ccr		; main does not return; if it did, stop quietly
 	bra	4b
 
+; Words from r0 up to r2 (exclusive) = r1.
+_rcx_clear:
+	bra	3f
+2:	mov.w	r1,@r0
+	adds	#2,r0
+3:	cmp.w	r2,r0
+	bne	2b
+	rts
+
 ; Target of unused RAM vectors. The ROM's trampoline saved r6, calls the vector with jsr and ends
 ; in rte, so a handler is a subroutine.
 _rcx_irq_ignore:
 	rts
-
-; The ROM refuses to start an image that does not contain this text inside 0x8000-0xCBFF.
-	.align	1
-_rcx_knock:
-	.ascii	"Do you byte, when I knock?"
-	.byte	0
 	.align	1

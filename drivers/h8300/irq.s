@@ -1,4 +1,4 @@
-; Interrupt entry points for C handlers.
+; Interrupt entry points, and the code that runs around SLEEP in standby.
 ;
 ; The ROM's vector for each interrupt pushes r6, calls the address stored in the RAM vector table
 ; (FD92-FDBE) with jsr, pops r6 and returns with rte. So an entry point stored there is a subroutine
@@ -21,4 +21,24 @@
 	rts
 	.endm
 
-	irq_entry _rcx_frt_irq, _rcx_frt_isr	; FRT compare match A (RAM vector FDA2): the 1 ms tick
+	irq_entry _rcx_frt_irq, _rcx_frt_isr	; FRT compare match A (FDA2): the 1 ms tick
+	irq_entry _rcx_adi_irq, _rcx_adi_isr	; A/D scan end (FDBC)
+	irq_entry _rcx_rxi_irq, _rcx_rxi_isr	; SCI byte received (FDB6)
+	irq_entry _rcx_eri_irq, _rcx_eri_isr	; SCI receive error (FDB4)
+	irq_entry _rcx_txi_irq, _rcx_txi_isr	; SCI transmit data register empty (FDB8)
+	irq_entry _rcx_tei_irq, _rcx_tei_isr	; SCI transmission ended (FDBA)
+
+; Copied to on-chip RAM at FD80 (16 bytes, up to FD8F) by hal_power_off and called there: while external
+; RAM is in power-save (P5.2 = 1) no instruction or data may come from it. Interrupts must be enabled for
+; the IRQ1 request (On-Off) to end the standby; the final rts doubles as the IRQ1 handler.
+	.section .text
+	.global	_rcx_standby_code
+	.global	_rcx_standby_code_end
+_rcx_standby_code:
+	bset	#2,@0xba:8		; P5.2: external RAM to power-save
+	andc	#0x7f,ccr
+	sleep
+	orc	#0x80,ccr
+	bclr	#2,@0xba:8		; external RAM awake
+	rts
+_rcx_standby_code_end:

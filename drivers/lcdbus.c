@@ -1,0 +1,35 @@
+/*
+ * The LCD controller's two-wire bus, bit-banged (rcx-hardware.md §3.6): data change while SCL is low, MSB first,
+ * each byte followed by an acknowledge clock. The pins come from the port's hw_pins.h: single bset/bclr
+ * instructions on the brick (other bits of the same port belong to interrupt handlers), a recorder in the host tests.
+ * No delays: at 16 MHz from external RAM each pin change takes about a microsecond (brickOS drives the same
+ * controller without delays).
+ */
+#include "hw.h"
+#include "hw_pins.h"
+
+void hw_lcd_send(const u8 *frame, u8 n)
+{
+    HW_SDA_LO(); /* START: SDA falls while SCL is high */
+    HW_SCL_LO();
+    while (n--) {
+        u8 v = *frame++, i = 8;
+
+        do {
+            if (v & 0x80)
+                HW_SDA_HI();
+            else
+                HW_SDA_LO();
+            HW_SCL_HI();
+            HW_SCL_LO();
+            v = (u8)(v << 1);
+        } while (--i);
+        /* The acknowledge clock with SDA driven low: that is the level the controller pulls it to, so nothing
+         * fights over the line and SDA never has to become an input (the acknowledge itself is not needed). */
+        HW_SDA_LO();
+        HW_SCL_HI();
+        HW_SCL_LO();
+    }
+    HW_SCL_HI(); /* STOP: SDA rises while SCL is high; SDA is low after the last acknowledge clock */
+    HW_SDA_HI();
+}

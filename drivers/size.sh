@@ -1,0 +1,36 @@
+#!/bin/sh
+# `make size`: what the firmware image costs. Usage: sh drivers/size.sh <firmware build dir, e.g. build/h8300>
+#   sections     text/data/bss as h8300-hms-size counts them (.onchip shows under data: it is not downloaded)
+#   image        bytes downloaded (0x8000 up to the end of code and constants), against the 16 384 budget
+#   free memory  the program-memory arena on an empty brick (memory map word 93 - word 92), from the link
+#   on-chip      interrupt variables at 0xFDC0 and the stack left above them
+#   checksum     what the ROM verifies: 16-bit sum of the image bytes 0x8000-0xCBFF (BeginFirmwareDownload)
+set -e
+dir="${1:-build/h8300}/drivers"
+image="$dir/openrcx"
+srec="$dir/openrcx.srec"
+[ -f "$image" ] && [ -f "$srec" ] || { echo "size.sh: no firmware in $dir (make firmware)" >&2; exit 1; }
+prefix=h8300-hms-
+command -v ${prefix}nm >/dev/null 2>&1 || prefix=h8300-hitachi-coff-
+
+${prefix}size "$image"
+${prefix}nm "$image" | awk '
+    function hex(s,   i, v) { v = 0; s = toupper(s)
+        for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
+        return v % 65536 }
+    { sym[$3] = hex($1) }
+    END {
+        image = sym["_rcx_image_end"] - sym["_rcx_image_base"]
+        printf "image:        %5d bytes of 16384 (%d left)\n", image, 16384 - image
+        printf "free memory:  %5d bytes for programs and datalog (goal >= 12000)\n", sym["_rcx_arena_size"]
+        printf "RAM:          code+data 0x8000-0x%04X, bss to 0x%04X of 0xF000\n", sym["_rcx_image_end"] - 1, sym["_rcx_bss_end"]
+        onchip = sym["_rcx_onchip_end"] - sym["_rcx_onchip_start"]
+        printf "on-chip RAM:  %5d bytes of interrupt variables, %d bytes of stack\n", onchip, sym["_rcx_stack_top"] - sym["_rcx_onchip_end"]
+    }'
+awk '
+    function hex(s,   i, v) { v = 0; s = toupper(s)
+        for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
+        return v }
+    /^S1/ { n = hex(substr($0, 3, 2)) - 3; addr = hex(substr($0, 5, 4))
+            for (i = 0; i < n; i++) if (addr + i >= 32768 && addr + i < 52224) sum += hex(substr($0, 9 + 2 * i, 2)) }
+    END { printf "ROM checksum: 0x%04X (16-bit sum of 0x8000-0xCBFF)\n", sum % 65536 }' "$srec"

@@ -1,0 +1,40 @@
+/*
+ * A small H8/300 instruction-set simulator for host tools: runs functions of the firmware image as the brick
+ * would and counts the states they take. Peripherals are not modelled (their registers read back what was
+ * written); an instruction it does not know stops it with a message instead of guessing.
+ *
+ * Timing model (after the H8/300 manual's scheme: states = instruction words fetched, data accesses and internal
+ * states): every access costs what its address costs on the RCX (rcx-hardware.md 1.1): external RAM on the 8-bit
+ * bus 3 states per byte, so 6 per instruction word or data word; on-chip RAM and ROM 2 per access; on-chip
+ * registers 3. A taken or untaken branch, a jump, call or return fetches one more word where it continues.
+ * Internal states: 2 for jsr/jmp to an absolute address, returns, pushes and pops, 12 for mulxu and divxu.
+ * Wait states: none. Interrupts are not simulated.
+ */
+#ifndef H8SIM_H
+#define H8SIM_H
+
+#include <stdint.h>
+
+struct h8 {
+    uint16_t r[8];
+    uint8_t ccr;
+    uint16_t pc;
+    uint8_t mem[65536];
+    unsigned long long states, insns;
+    char error[160];        /* set when the simulator stopped on something it cannot run */
+    /* Called after each instruction with its address and the states it took (profiles), if set. */
+    void (*trace)(struct h8 *h, uint16_t pc, unsigned states);
+};
+
+void h8_reset(struct h8 *h);
+int h8_load_srec(struct h8 *h, const char *path);            /* 0 on success */
+int h8_step(struct h8 *h);                                    /* 0 ok, -1 stopped (error set) */
+/* Call the function at `addr` with r0-r2 as gcc passes its first arguments and `nstack` words pushed after
+ * them (stack[0] nearest the return address); runs until it returns, at most `max_insns`. Returns r0, or -1 in
+ * h->error set on failure. */
+long h8_call(struct h8 *h, uint16_t addr, uint16_t r0, uint16_t r1, uint16_t r2,
+             const uint16_t *stack, int nstack, unsigned long max_insns);
+uint16_t h8_read16(const struct h8 *h, uint16_t a);
+void h8_write16(struct h8 *h, uint16_t a, uint16_t v);
+
+#endif

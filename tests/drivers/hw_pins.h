@@ -1,0 +1,12 @@
+/* The LCD bus pins in the host tests: every change is recorded (test_lcdbus.c decodes the waveform). */
+#ifndef RCX_HW_PINS_H
+#define RCX_HW_PINS_H
+
+void pins_set(int line, int level); /* line 0 = SCL, 1 = SDA */
+
+#define HW_SCL_HI() pins_set(0, 1)
+#define HW_SCL_LO() pins_set(0, 0)
+#define HW_SDA_HI() pins_set(1, 1)
+#define HW_SDA_LO() pins_set(1, 0)
+
+#endif

@@ -1,0 +1,36 @@
+#!/bin/sh
+# The image's budgets: at most 16 384 bytes downloaded, at least 12 000 bytes of program memory on an empty brick
+# (the arena the link left, symbol _rcx_arena_size), entry at 0x8000.
+#
+# Usage: check_budget.sh image <nm> <image>   checks the image's symbols
+#        check_budget.sh scan <nm listing>    checks an `nm` listing
+set -e
+scan() {
+    awk '
+        function hex(s,   i, v) { v = 0; s = toupper(s)
+            for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
+            return v % 65536 }
+        NF == 3 { sym[$3] = hex($1); seen[$3] = 1 }
+        END {
+            split("_start _rcx_image_end _rcx_arena_size", need, " ")
+            for (i = 1; i <= 3; i++) if (!seen[need[i]]) { print "symbol " need[i] " missing"; exit 1 }
+            image = sym["_rcx_image_end"] - 32768
+            free = sym["_rcx_arena_size"]
+            printf "image %d bytes (budget 16384), program memory %d bytes (at least 12000)\n", image, free
+            if (sym["_start"] != 32768) { print "entry is not 0x8000"; exit 1 }
+            if (image > 16384) { print "image over budget"; exit 1 }
+            if (free < 12000) { print "too little program memory"; exit 1 }
+        }' "$1"
+}
+case "$1" in
+scan)
+    scan "$2" ;;
+image)
+    [ -f "$3" ] || { echo "no firmware image $3 (make firmware)"; exit 1; }
+    tmp="${TMPDIR:-/tmp}/check_budget.$$"
+    trap 'rm -f "$tmp"' EXIT
+    "$2" "$3" > "$tmp"
+    scan "$tmp" ;;
+*)
+    echo "usage: $0 image <nm> <image> | scan <listing>" >&2; exit 2 ;;
+esac
