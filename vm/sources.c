@@ -5,15 +5,57 @@
 #include "rcx.h"
 #include "sources.h"
 
-#define R 0
-#define RW 1
-const struct rcx_source_info rcx_sources[RCX_SOURCE_COUNT] = {
-#define RCX_SRC(num, id, name, max, access) [num] = { max, 1, access },
+/*
+ * One 4-byte row per source number: where a plain source lives in the brick (most sources are an array of fields
+ * read as they are), and what index range and access the spec allows. One generic reader serves the plain ones;
+ * the few computed ones are tested for one by one (a switch would cost the H8/300 a jump table and long branches).
+ */
+struct source_row {
+    u16 offset;     /* of the field for index 0 */
+    u8 shape;       /* bits 0-4 stride between indices, SHAPE_WORD, SHAPE_STORE, SHAPE_FIELD */
+    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value), LIMIT_EXISTS, LIMIT_WRITABLE */
+};
+#define SHAPE_WORD 0x20     /* a 16-bit field, else 8-bit unsigned */
+#define SHAPE_STORE 0x40    /* a write stores the value as it is */
+#define SHAPE_FIELD 0x80    /* read straight from the field */
+#define LIMIT_EXISTS 0x40
+#define LIMIT_WRITABLE 0x80
+RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
+
+#define R LIMIT_EXISTS
+#define RW (LIMIT_EXISTS | LIMIT_WRITABLE)
+#define STORE SHAPE_STORE
+#define RCX_MEMBER(m) (((struct rcx *)0)->m)
+#define COMPUTED 0, 0
+#define FIELD(field, elem, store)                                                                   \
+    (u16)offsetof(struct rcx, field),                                                              \
+    (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store) | SHAPE_FIELD)
+
+static const struct source_row rows[RCX_SOURCE_COUNT] = {
+#define RCX_SRC(num, id, name, max, access, place) [num] = { place, (u8)((max) | (access)) },
 #include "sources.def"
 #undef RCX_SRC
 };
-#undef R
-#undef RW
+
+/* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. */
+static const struct source_row *row(u8 src, u16 index, u8 need)
+{
+    const struct source_row *r;
+    u8 max;
+    if (src >= RCX_SOURCE_COUNT)
+        return NULL;
+    r = &rows[src];
+    max = (u8)(r->limits & RCX_ANY);
+    if ((r->limits & need) != need || (max != RCX_ANY && index > max))
+        return NULL;
+    return r;
+}
+
+/* The field of a plain source at an index already checked (<= 47: an 8-bit multiply). */
+static u8 *field(struct rcx *b, const struct source_row *r, u16 index)
+{
+    return (u8 *)b + r->offset + (u8)index * (u8)(r->shape & 0x1F);
+}
 
 s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n)
 {
@@ -37,97 +79,74 @@ static u16 next_random(struct rcx *b)
 
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
+    const struct source_row *r;
     const s16 *v;
+    const u8 *p;
 
     if (src == RCX_SRC_CONST)          /* by far the commonest source: no table look-up */
         return (s16)index;
-    if (src >= RCX_SOURCE_COUNT || !rcx_sources[src].exists || index > rcx_sources[src].max)
+    if ((r = row(src, index, LIMIT_EXISTS)) == NULL)
         return 0;
-    switch (src) {
-    case RCX_SRC_VAR:
+    if (r->shape & SHAPE_FIELD) {
+        p = field(b, r, index);
+        return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
+    }
+    if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
         v = var_ref(b, (struct rcx_task *)t, index);
+        if (v && src == RCX_SRC_INDIRECT)
+            v = var_ref(b, (struct rcx_task *)t, (u16)*v);
         return v ? *v : 0;
-    case RCX_SRC_TIMER:
-        return (s16)b->timer[index];
-    case RCX_SRC_CONST:
-        return (s16)index;
-    case RCX_SRC_MOTOR:
+    }
+    if (src == RCX_SRC_MOTOR)
         return outputs_status(b, (u8)index);
-    case RCX_SRC_RANDOM:
+    if (src == RCX_SRC_GLOBAL_MOTOR)
+        return outputs_global_status(b, (u8)index);
+    if (src == RCX_SRC_RANDOM) {
         /* 0..index inclusive; a range below 1 gives 0. */
         if ((s16)index <= 0)
             return 0;
         return (s16)(next_random(b) % (u16)(index + 1));
-    case RCX_SRC_PROGRAM:
-        return b->prog;
-    case RCX_SRC_SENSOR_VALUE:
-        return b->sensor[index].value;
-    case RCX_SRC_SENSOR_TYPE:
-        return b->sensor[index].type;
-    case RCX_SRC_SENSOR_MODE:
-        return b->sensor[index].mode;
-    case RCX_SRC_SENSOR_RAW:
-        return (s16)b->sensor[index].raw;
-    case RCX_SRC_SENSOR_BOOL:
-        return b->sensor[index].boolean;
-    case RCX_SRC_WATCH:
-        return (s16)b->watch;
-    case RCX_SRC_MESSAGE:
-        return b->message;
-    case RCX_SRC_GLOBAL_MOTOR:
-        return outputs_global_status(b, (u8)index);
-    case RCX_SRC_COUNTER:
-        return b->global[index];
-    case RCX_SRC_TASK_EVENTS:
+    }
+    if (src == RCX_SRC_TASK_EVENTS) {
         if (index == RCX_TASKS) /* index 10: the asking task's own events, as nqc reads CurrentEvents() */
             return t ? (s16)t->ev.events : 0;
         return (s16)b->task[index].ev.events;
-    case RCX_SRC_EVENT_STATE:
-        return b->event[index].state;
-    case RCX_SRC_TIMER10:
+    }
+    if (src == RCX_SRC_TIMER10)
         /* 10 x the 100 ms count plus the 10 ms steps into the current 100 ms tick (reference-firmware.md). */
         return (s16)((u16)(b->timer[index] * 10u + b->step10) & 0x7FFF);
-    case RCX_SRC_CLICKS:
-        return b->event[index].clicks;
-    case RCX_SRC_UPPER:
-        return b->event[index].upper;
-    case RCX_SRC_LOWER:
-        return b->event[index].lower;
-    case RCX_SRC_HYSTERESIS:
-        return b->event[index].hysteresis;
-    case RCX_SRC_DURATION:
-        return b->event[index].duration;
-    case RCX_SRC_UART:
-        return b->uart[index];
-    case RCX_SRC_BATTERY:
-        return (s16)b->battery_mv;
-    case RCX_SRC_FIRMWARE:
-        return RCX_FIRMWARE_VERSION;
-    case RCX_SRC_INDIRECT:
-        v = var_ref(b, (struct rcx_task *)t, index);
-        if (!v)
-            return 0;
-        v = var_ref(b, (struct rcx_task *)t, (u16)*v);
-        return v ? *v : 0;
-    }
-    return 0;
+    return RCX_FIRMWARE_VERSION;       /* the last source without a field */
 }
 
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 {
+    const struct source_row *r;
     s16 *v;
+    u8 *p;
 
-    if (src >= RCX_SOURCE_COUNT || !rcx_sources[src].writable || index > rcx_sources[src].max)
+    if ((r = row(src, index, LIMIT_EXISTS | LIMIT_WRITABLE)) == NULL)
         return;
+    p = field(b, r, index);
+    if (r->shape & SHAPE_STORE) {      /* thresholds, click counter, UART buffer: stored as they are */
+        if (r->shape & SHAPE_WORD)
+            *(s16 *)(void *)p = value;
+        else
+            *p = (u8)value;
+        return;
+    }
     switch (src) {
     case RCX_SRC_VAR:
+    case RCX_SRC_INDIRECT:
         v = var_ref(b, t, index);
+        if (v && src == RCX_SRC_INDIRECT)
+            v = var_ref(b, t, (u16)*v);
         if (v)
             *v = value;
         break;
     case RCX_SRC_TIMER:
+    case RCX_SRC_TIMER10:
         if (value >= 0)
-            b->timer[index] = (u16)value;
+            b->timer[index] = src == RCX_SRC_TIMER ? (u16)value : (u16)((u16)value / 10u);
         break;
     case RCX_SRC_RANDOM:
         if (index == 0) /* writing random 0 seeds the generator */
@@ -138,12 +157,13 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             sched_select_program(b, (u8)value, t != NULL);
         break;
     case RCX_SRC_SENSOR_TYPE:
-        if (value >= 0 && value <= 0xFF)
-            sensor_set_type(b, (u8)index, (u8)value);
-        break;
     case RCX_SRC_SENSOR_MODE:
-        if (value >= 0 && value <= 0xFF)
-            sensor_set_mode(b, (u8)index, (u8)value);
+        if (value >= 0 && value <= 0xFF) {
+            if (src == RCX_SRC_SENSOR_TYPE)
+                sensor_set_type(b, (u8)index, (u8)value);
+            else
+                sensor_set_mode(b, (u8)index, (u8)value);
+        }
         break;
     case RCX_SRC_WATCH:
         if (value >= 0 && value < 24 * 60) {
@@ -159,34 +179,11 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         b->global[index] = value;
         events_counter_changed(b, (u8)index);
         break;
-    case RCX_SRC_TIMER10:
-        if (value >= 0)
-            b->timer[index] = (u16)((u16)value / 10u);
-        break;
-    case RCX_SRC_CLICKS:
-        b->event[index].clicks = value;
-        break;
-    case RCX_SRC_UPPER:
-        b->event[index].upper = value;
-        break;
-    case RCX_SRC_LOWER:
-        b->event[index].lower = value;
-        break;
     case RCX_SRC_HYSTERESIS:
-        if (value >= 0) /* "must be non-negative" */
-            b->event[index].hysteresis = value;
-        break;
     case RCX_SRC_DURATION:
-        if (value >= 5) /* 50 ms - 327 s */
-            b->event[index].duration = value;
-        break;
-    case RCX_SRC_UART:
-        b->uart[index] = (u8)value;
-        break;
-    case RCX_SRC_INDIRECT:
-        v = var_ref(b, t, index);
-        if (v && (v = var_ref(b, t, (u16)*v)) != NULL)
-            *v = value;
+        /* Hysteresis "must be non-negative"; a duration is 50 ms - 327 s (5-32767). */
+        if (value >= (src == RCX_SRC_DURATION ? 5 : 0))
+            *(s16 *)(void *)p = value;
         break;
     }
 }
