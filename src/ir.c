@@ -13,6 +13,7 @@
 #include "hal.h"
 
 RCX_STATIC_ASSERT(packet_length_fits_a_byte, IR_RX_MAX <= 255);
+RCX_STATIC_ASSERT(chunk_fits_rx, IR_CHUNK <= IR_RX_MAX);
 
 enum {
     IR_RX_IDLE = 0,  /* looking for a header or an opcode */
@@ -38,12 +39,15 @@ static u8 sending(struct rcx_brick *k)
 
 u8 ir_idle(struct rcx_brick *k)
 {
-    return (u8)(!sending(k) && !k->ir.echo);
+    return (u8)(!k->ir.echo && !sending(k));
 }
 
-/* A value byte whose complement checked out. */
-static void accept(struct rcx_ir *ir, u8 v)
+/* A value byte whose complement checked out. Out of line, so that ir_byte() stays within the reach of the H8's short
+ * branches. */
+static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
 {
+    u8 op;
+
     if (ir->rx_len == ir->rx_need) { /* the checksum */
         ir->rx_state = v == ir->rx_sum ? IR_RX_READY : IR_RX_IDLE;
         return;
@@ -51,21 +55,23 @@ static void accept(struct rcx_ir *ir, u8 v)
     ir->rx[ir->rx_len++] = v;
     ir->rx_sum = (u8)(ir->rx_sum + v);
     ir->rx_state = IR_RX_VALUE;
+    op = (u8)(ir->rx[0] & (u8)~RCX_TOGGLE);
     if (ir->rx_len == 1) {
-        ir->rx_need = (u8)(1 + rcx_op_nominal_params(v));
-    } else if (ir->rx_len == 5 && (ir->rx[0] & (u8)~RCX_TOGGLE) == RCX_OP_CONTINUE_DL) {
+        ir->rx_need = (u8)(1 + rcx_op_nominal_params(op));
+    } else if (ir->rx_len == 5 && op == RCX_OP_CONTINUE_DL) {
         if (ir->rx[4] || ir->rx[3] > IR_BLOCK_MAX)
             ir->rx_state = IR_RX_DRAIN;
         ir->rx_need = (u8)(6 + ir->rx[3]); /* + data + block checksum */
     }
 }
 
-void ir_byte(struct rcx_brick *k, u8 byte, u8 error)
+/* rt_ir_byte() (src/runtime.h) is the receiver itself: one call less for every byte. */
+void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
 {
     struct rcx_ir *ir = &k->ir;
     u8 st;
 
-    if (ir->echo || sending(k)) { /* our own transmission coming back */
+    if (!ir_idle(k)) { /* our own transmission coming back */
         if (ir->echo)
             ir->echo--;
         return;
@@ -78,14 +84,13 @@ void ir_byte(struct rcx_brick *k, u8 byte, u8 error)
         ir->rx_state = IR_RX_IDLE;
         return;
     }
-    if (st == IR_RX_COMPLEMENT) {
-        if ((u8)(byte ^ ir->rx_value) == 0xFF) {
-            accept(ir, ir->rx_value);
-            return;
-        }
-        st = IR_RX_IDLE; /* not a complement: this byte may begin the next packet */
+    if (st == IR_RX_COMPLEMENT && (u8)(byte ^ ir->rx_value) == 0xFF) {
+        accept(ir, ir->rx_value);
+        return;
     }
-    if (st == IR_RX_IDLE) {
+    /* Looking for a packet, or a byte that is not the complement (it may begin the next packet): a header byte, or
+     * the opcode. */
+    if (st != IR_RX_VALUE && st != IR_RX_OPCODE) {
         if (byte == 0x55 || byte == 0xFF) {
             ir->rx_state = IR_RX_IDLE;
             return;
@@ -94,9 +99,8 @@ void ir_byte(struct rcx_brick *k, u8 byte, u8 error)
             ir->rx_state = IR_RX_OPCODE;
             return;
         }
-        st = IR_RX_OPCODE;
     }
-    if (st == IR_RX_OPCODE) {
+    if (st != IR_RX_VALUE) {
         ir->rx_len = 0;
         ir->rx_sum = 0;
         ir->rx_need = 1;
@@ -125,46 +129,41 @@ void ir_tick(struct rcx_brick *k)
 /* Byte `pos` of the framed packet. */
 static u8 framed(const struct rcx_ir *ir, u16 pos)
 {
-    u8 v;
+    u8 odd = 0, v;
+
     if (ir->tx_pack & IR_PACK_PREAMBLE) {
         if (pos < 3)
             return preamble[pos];
         pos -= 3;
     }
     if (ir->tx_pack & IR_PACK_COMPLEMENT) {
-        v = (pos >> 1) < ir->tx_src_len ? ir->tx_src[pos >> 1] : ir->tx_sum;
-        return (u8)(pos & 1 ? ~v : v);
+        odd = (u8)(pos & 1);
+        pos >>= 1;
     }
-    return pos < ir->tx_src_len ? ir->tx_src[pos] : ir->tx_sum;
+    v = pos < ir->tx_src_len ? ir->tx_src[pos] : ir->tx_sum;
+    return odd ? (u8)~v : v;
 }
 
-static void tx_start(struct rcx_ir *ir, const u8 *src, u8 len, u8 pack, u8 mode)
+/* Start sending the `len` bytes at ir->tx_src, framed as ir->tx_pack says. Out of line, so that ir_poll() keeps
+ * its registers. */
+static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
 {
-    u8 i, sum = 0;
-    for (i = 0; i < len; i++)
-        sum = (u8)(sum + src[i]);
-    ir->tx_src = src;
+    const u8 *p = ir->tx_src;
+    u8 sum = 0, pack = ir->tx_pack;
+    u16 total = len;
+
     ir->tx_src_len = len;
-    ir->tx_pack = pack;
-    ir->tx_mode = mode;
+    while (len--)
+        sum = (u8)(sum + *p++);
     ir->tx_sum = sum;
     ir->tx_pos = 0;
-    ir->tx_total = (u16)((pack & IR_PACK_PREAMBLE ? 3 : 0) +
-                         (pack & IR_PACK_COMPLEMENT ? 2 * len + 2 : len + (pack & IR_PACK_CHECKSUM ? 1 : 0)));
-}
-
-/* Hand the next piece of the packet to the driver once it has sent the previous one. */
-static void tx_continue(struct rcx_brick *k)
-{
-    struct rcx_ir *ir = &k->ir;
-    u8 n = 0;
-
-    if (ir->tx_pos >= ir->tx_total || hal_ir_busy(&k->vm))
-        return;
-    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total)
-        ir->chunk[n++] = framed(ir, ir->tx_pos++);
-    ir->echo = (u16)(ir->echo + n);
-    hal_ir_send(&k->vm, ir->chunk, n, ir->tx_mode);
+    if (pack & IR_PACK_COMPLEMENT)
+        total = (u16)(2 * total + 2);
+    else if (pack & IR_PACK_CHECKSUM)
+        total++;
+    if (pack & IR_PACK_PREAMBLE)
+        total += 3;
+    ir->tx_total = total;
 }
 
 static void execute(struct rcx_brick *k)
@@ -181,37 +180,49 @@ static void execute(struct rcx_brick *k)
         /* PBAliveOrNot "re-initialises the toggle bit" (spec p. 12): any packet after it is new anyway, since its
          * opcode differs, and a repeated ping is answered the same whether executed or not. */
     }
-    if (ir->reply_len)
-        tx_start(ir, ir->reply, ir->reply_len, IR_PACK_STANDARD, 0);
 }
 
 void ir_poll(struct rcx_brick *k)
 {
     struct rcx_ir *ir = &k->ir;
-    struct rcx_remote *r = &k->vm.remote;
+    u8 n = 0, len = 0;
 
     if (ir->range != k->vm.tx_range) {
         ir->range = k->vm.tx_range;
         hal_ir_range(&k->vm, ir->range);
     }
-    if (ir->tx_pos < ir->tx_total) {
-        tx_continue(k);
-        return;
-    }
-    if (ir->rx_state == IR_RX_READY) {
-        execute(k);
-    } else if (r->tx_len && ir->rx_state == IR_RX_IDLE && ir->quiet >= IR_SENSE_MS && ir_idle(k)) {
-        /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The request
-         * is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now on. */
-        if (r->tx_msg) {
-            if (r->tx[0] == ir->last_msg)
-                r->tx[0] ^= RCX_TOGGLE; /* a receiver must not take our new message for a repeat */
-            ir->last_msg = r->tx[0];
+    if (ir->tx_pos >= ir->tx_total) {
+        /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
+        if (ir->rx_state == IR_RX_READY) {
+            execute(k);
+            ir->tx_src = ir->reply;
+            len = ir->reply_len;
+            ir->tx_pack = IR_PACK_STANDARD;
+            ir->tx_mode = 0;
+        } else if (k->vm.remote.tx_len && ir->rx_state == IR_RX_IDLE && ir->quiet >= IR_SENSE_MS && ir_idle(k)) {
+            /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
+             * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
+             * on. */
+            if (k->vm.remote.tx_msg) {
+                if (k->vm.remote.tx[0] == ir->last_msg)
+                    k->vm.remote.tx[0] ^= RCX_TOGGLE; /* a receiver must not take our new message for a repeat */
+                ir->last_msg = k->vm.remote.tx[0];
+            }
+            ir->tx_src = k->vm.remote.tx;
+            len = k->vm.remote.tx_len;
+            ir->tx_pack = k->vm.remote.tx_pack;
+            ir->tx_mode = k->vm.remote.tx_mode;
+            k->vm.remote.tx_len = 0;
         }
-        tx_start(ir, r->tx, r->tx_len, r->tx_pack, r->tx_mode);
-        r->tx_len = 0;
-    } else {
-        return;
+        if (len)
+            tx_start(ir, len);
     }
-    tx_continue(k);
+    /* Hand the next piece of the packet to the driver once it has sent the previous one. */
+    if (ir->tx_pos >= ir->tx_total || hal_ir_busy(&k->vm))
+        return;
+    do
+        ir->rx[n++] = framed(ir, ir->tx_pos++);
+    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);
+    ir->echo = (u16)(ir->echo + n);
+    hal_ir_send(&k->vm, ir->rx, n, ir->tx_mode);
 }

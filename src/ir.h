@@ -29,7 +29,7 @@ struct rcx_ir {
     u8 quiet;           /* milliseconds since another device's last byte (up to 255) */
     u8 rx_len;          /* payload bytes accepted */
     u8 rx_need;         /* payload bytes of this packet, once the opcode (and a 0x45 length) told */
-    u8 rx[IR_RX_MAX];
+    u8 rx[IR_RX_MAX];   /* also the transmitter's chunk: nothing is received while the brick transmits */
 
     /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed. */
     u8 have_last;
@@ -37,7 +37,7 @@ struct rcx_ir {
     u8 reply_len;       /* 0: the last command has no reply */
     u8 reply[RCX_REPLY_MAX];
 
-    /* Transmitter: a packet is framed on the fly from tx_src, IR_CHUNK bytes at a time. */
+    /* Transmitter: a packet is framed on the fly from tx_src, IR_CHUNK bytes at a time, into rx. */
     const u8 *tx_src;
     u8 tx_src_len;
     u8 tx_pack;         /* IR_PACK_* below */
@@ -49,7 +49,6 @@ struct rcx_ir {
     u8 echo_quiet;      /* milliseconds since the transmitter went idle with echo outstanding */
     u8 range;           /* range last given to hal_ir_range() */
     u8 last_msg;        /* opcode byte of the last IR message sent (F7 / FF alternate) */
-    u8 chunk[IR_CHUNK];
 };
 
 /* Framing bits, as PackConf (source 33 byte 16, spec p. 9) names them. */
@@ -59,7 +58,7 @@ struct rcx_ir {
 #define IR_PACK_STANDARD 0x07
 
 void ir_init(struct rcx_brick *k);
-void ir_byte(struct rcx_brick *k, u8 byte, u8 error);
+/* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
 u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */

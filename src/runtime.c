@@ -35,10 +35,7 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
     return vm_run(&k->vm, budget);
 }
 
-void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
-{
-    ir_byte(k, byte, error);
-}
+/* rt_ir_byte() is in src/ir.c. */
 
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)
 {

@@ -1,7 +1,34 @@
 /*
- * Access control & event monitoring (spec pp. 69, 85, 96, 106-107): the state machine of p. 107 as a table with
- * one cell per state x input, run by one small interpreter. Rows and columns are the spec's, in its order; each
- * cell names the spec's actions in the spec's words.
+ * Access control & event monitoring (spec pp. 69, 85, 96, 106-107): the state machine of p. 107, one per task.
+ *
+ * The spec's table, rows = states, columns = inputs (REL = RELEASE RC, (N) = NEW, (A) = ALERT, - = nothing):
+ *
+ *          EV                   AC                   EXIT EV        EXIT AC    START, STOP, DELETE TASK
+ *  NONE    -                    -                    -              -          -
+ *  EV      JUMP EV GO NONE      -                    GO NONE        -          GO NONE
+ *  AC      -                    REL JUMP AC GO NONE  -              GO NONE    REL GO NONE
+ *  EV->AC  REL JUMP EV GO NONE  REL JUMP AC GO EV    REL GO NONE    GO EV      REL GO NONE
+ *  AC->EV  JUMP EV GO AC        REL JUMP AC GO NONE  GO AC          GO NONE    REL GO NONE
+ *
+ *          ENTER EV (MON, LBL):          ENTER AC (RES, LBL)
+ *          IF MON<>0 EV=LBL GO ...,
+ *          ELSE SEND EXIT EV
+ *  NONE    GO EV                         IF OK AC=LBL RC=RES GO AC, ELSE JUMP LBL
+ *  EV      GO EV (N)                     IF OK AC=LBL RC=RES GO EV->AC, ELSE JUMP LBL
+ *  AC      GO AC->EV                     AC=LBL IF OK RC=RES GO AC (N), ELSE SEND AC
+ *  EV->AC  GO AC->EV (A)                 AC=LBL IF OK RC=RES GO EV->AC (N), ELSE SEND AC
+ *  AC->EV  GO AC->EV (N)                 AC=LBL IF OK RC=RES GO EV->AC (A), ELSE SEND AC
+ *
+ * Read by region, the table is three rules, which is how it is run here:
+ *  - EV and EXIT EV end event monitoring, AC and EXIT AC end the access region; in a state without that region
+ *    they do nothing. EV and AC also jump to the region's label. Ending the access region releases RC and leaves
+ *    the event monitoring it was entered in (EV->AC goes to EV); ending event monitoring goes back to the access
+ *    region it was entered in (AC->EV goes to AC) and otherwise to NONE, releasing RC (EV->AC).
+ *  - ENTER EV and ENTER AC (when granted) open their region inside whatever the task is in: the new state keeps
+ *    the other region. A refused ENTER AC jumps to LBL, or inside an access region ends it (SEND AC) with LBL as
+ *    its label. ENTER EV without events to monitor is EXIT EV.
+ *  - START, STOP and DELETE TASK end everything.
+ * RC is empty in the states without an access region, so releasing it there changes nothing.
  *
  * Where the table is silent or garbled:
  *  - EXIT AC lists only GO in rows AC, EV->AC and AC->EV. Leaving an access region must give its resources back
@@ -12,180 +39,106 @@
 #include "rcx.h"
 #include "access.h"
 
-/*
- * A cell is the set of its actions. The interpreter performs them in the order every cell of the spec lists them:
- * AC=LBL when it comes before the IF; the IF; then RELEASE RC, EV=LBL, AC=LBL, RC=RES, JUMP, GO; or, when the IF
- * fails, the ELSE action (a SEND or JUMP LBL).
- */
-#define GO(state)    ((u16)((state) + 1)) /* bits 0-2; 0: the state does not change */
-#define JUMP_EV      0x0008u
-#define JUMP_AC      0x0010u
-#define RELEASE_RC   0x0020u
-#define EV_LBL       0x0040u    /* EV=LBL (and the events to monitor) */
-#define AC_LBL       0x0080u    /* AC=LBL inside the IF */
-#define RC_RES       0x0100u    /* RC=RES */
-#define IF_MON       0x0200u    /* IF MON<>0 */
-#define IF_OK        0x0400u    /* IF OK: no task of higher priority holds any of RES */
-#define AC_LBL_IF    0x0800u    /* AC=LBL before the IF */
-#define ELSE_SEND_EXIT_EV 0x1000u
-#define ELSE_SEND_AC 0x2000u
-#define ELSE_JUMP_LBL 0x4000u
-
-#define NONE ACCESS_NONE
-#define EV ACCESS_EV
-#define AC ACCESS_AC
-#define EV_AC ACCESS_EV_AC
-#define AC_EV ACCESS_AC_EV
-
-/* Spec p. 107. (NEW) and (ALERT) mark the transitions the spec marks; they need no action of their own. */
-static const u16 access_table[ACCESS_STATES][ACCESS_INPUTS] = {
-    [NONE] = {
-        [ACCESS_IN_EV] = 0,
-        [ACCESS_IN_AC] = 0,
-        [ACCESS_IN_EXIT_EV] = 0,
-        [ACCESS_IN_EXIT_AC] = 0,
-        [ACCESS_IN_ENTER_EV] = IF_MON | EV_LBL | GO(EV) | ELSE_SEND_EXIT_EV,
-        [ACCESS_IN_ENTER_AC] = IF_OK | AC_LBL | RC_RES | GO(AC) | ELSE_JUMP_LBL,
-        [ACCESS_IN_END] = 0,
-    },
-    [EV] = {
-        [ACCESS_IN_EV] = JUMP_EV | GO(NONE),
-        [ACCESS_IN_AC] = 0,
-        [ACCESS_IN_EXIT_EV] = GO(NONE),
-        [ACCESS_IN_EXIT_AC] = 0,
-        [ACCESS_IN_ENTER_EV] = IF_MON | EV_LBL | GO(EV) /* NEW */ | ELSE_SEND_EXIT_EV,
-        [ACCESS_IN_ENTER_AC] = IF_OK | AC_LBL | RC_RES | GO(EV_AC) | ELSE_JUMP_LBL,
-        [ACCESS_IN_END] = GO(NONE),
-    },
-    [AC] = {
-        [ACCESS_IN_EV] = 0,
-        [ACCESS_IN_AC] = RELEASE_RC | JUMP_AC | GO(NONE),
-        [ACCESS_IN_EXIT_EV] = 0,
-        [ACCESS_IN_EXIT_AC] = RELEASE_RC | GO(NONE),
-        [ACCESS_IN_ENTER_EV] = IF_MON | EV_LBL | GO(AC_EV) | ELSE_SEND_EXIT_EV,
-        [ACCESS_IN_ENTER_AC] = AC_LBL_IF | IF_OK | RC_RES | GO(AC) /* NEW */ | ELSE_SEND_AC,
-        [ACCESS_IN_END] = RELEASE_RC | GO(NONE),
-    },
-    [EV_AC] = {
-        [ACCESS_IN_EV] = RELEASE_RC | JUMP_EV | GO(NONE),
-        [ACCESS_IN_AC] = RELEASE_RC | JUMP_AC | GO(EV),
-        [ACCESS_IN_EXIT_EV] = RELEASE_RC | GO(NONE),
-        [ACCESS_IN_EXIT_AC] = RELEASE_RC | GO(EV),
-        [ACCESS_IN_ENTER_EV] = IF_MON | EV_LBL | GO(AC_EV) /* ALERT */ | ELSE_SEND_EXIT_EV,
-        [ACCESS_IN_ENTER_AC] = AC_LBL_IF | IF_OK | RC_RES | GO(EV_AC) /* NEW */ | ELSE_SEND_AC,
-        [ACCESS_IN_END] = RELEASE_RC | GO(NONE),
-    },
-    [AC_EV] = {
-        [ACCESS_IN_EV] = JUMP_EV | GO(AC),
-        [ACCESS_IN_AC] = RELEASE_RC | JUMP_AC | GO(NONE),
-        [ACCESS_IN_EXIT_EV] = GO(AC),
-        [ACCESS_IN_EXIT_AC] = RELEASE_RC | GO(NONE),
-        [ACCESS_IN_ENTER_EV] = IF_MON | EV_LBL | GO(AC_EV) /* NEW */ | ELSE_SEND_EXIT_EV,
-        [ACCESS_IN_ENTER_AC] = AC_LBL_IF | IF_OK | RC_RES | GO(EV_AC) /* ALERT */ | ELSE_SEND_AC,
-        [ACCESS_IN_END] = RELEASE_RC | GO(NONE),
-    },
-};
-
-/* A jump reaches a task wherever it is; one asleep in Wait wakes up to take it. */
-static void jump(struct rcx *b, struct rcx_task *t, u8 sub, u16 pc)
+/* A jump to `pc` (in the code object the caller has put in t->sub) reaches a task wherever it is; one asleep in Wait
+ * wakes up to take it. */
+static void jump(struct rcx *b, struct rcx_task *t, u16 pc)
 {
-    t->sub = sub;
     t->pc = pc;
     if (t->state == RCX_TASK_WAITING) {
-        const struct rcx_task *u = b->task;
+        const struct rcx_task *u;
         u16 bit = 1;
-        while (u++ != t)
+        for (u = b->task; u != t; u++)
             bit <<= 1;
         t->state = RCX_TASK_RUNNING;
         b->runmask |= bit;
     }
 }
 
-/* The actions of cell `c` that follow a successful IF (or stand alone). */
-static void perform(struct rcx *b, struct rcx_task *t, u16 c, u16 arg, u16 label)
+/* The EV, AC, EXIT EV, EXIT AC or END input: the first and last rules above. */
+void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
-    struct rcx_task_events *m = &t->ev;
+    u8 s = t->ev.state, n = ACCESS_NONE;
 
-    if (c & RELEASE_RC)
-        m->rc = 0;
-    if (c & EV_LBL) {
-        m->ev_pc = label;
-        m->ev_sub = t->sub;
-        m->mon = arg;
+    if (input == ACCESS_IN_EV || input == ACCESS_IN_EXIT_EV) {
+        if (!ACCESS_HAS_EV(s))
+            return;
+        if (input == ACCESS_IN_EV) {
+            t->sub = t->ev.ev_sub;
+            jump(b, t, t->ev.ev_pc);
+        }
+        if (s == ACCESS_AC_EV)
+            n = ACCESS_AC;
+    } else if (input != ACCESS_IN_END) {
+        if (!ACCESS_HAS_AC(s))
+            return;
+        if (input == ACCESS_IN_AC) {
+            t->sub = t->ev.ac_sub;
+            jump(b, t, t->ev.ac_pc);
+        }
+        if (s == ACCESS_EV_AC)
+            n = ACCESS_EV;
     }
-    if (c & AC_LBL) {
-        m->ac_pc = label;
-        m->ac_sub = t->sub;
-    }
-    if (c & RC_RES)
-        m->rc = (u8)arg;
-    if (c & JUMP_EV)
-        jump(b, t, m->ev_sub, m->ev_pc);
-    if (c & JUMP_AC)
-        jump(b, t, m->ac_sub, m->ac_pc);
-    if (c & 7)
-        m->state = (u8)((c & 7) - 1);
+    if (!ACCESS_HAS_AC(n))
+        t->ev.rc = 0; /* RELEASE RC */
+    t->ev.state = n;
 }
 
-/* OK: no other task of higher priority (lower number) holds any of `res`. */
-static u8 ok(const struct rcx *b, const struct rcx_task *t, u8 res)
+/* IF OK for a request of `res`: OK when no other task of higher priority (lower number) holds any of it. When it
+ * is, the other holders (of equal or lower priority) lose everything they hold, their motors brake (p. 98) and
+ * they take the AC input: a first pass over the tasks decides, a second one takes. */
+static u8 request(struct rcx *b, const struct rcx_task *t, u8 res)
 {
-    const struct rcx_task *u;
+    struct rcx_task *u;
+    u8 take;
 
-    for (u = b->task; u < b->task + RCX_TASKS; u++)
-        if (u != t && (u->ev.rc & res) && u->priority < t->priority)
-            return 0;
+    for (take = 0; take < 2; take++) {
+        u = b->task;
+        do
+            if (u != t && (u->ev.rc & res)) {
+                if (!take) {
+                    if (u->priority < t->priority)
+                        return 0;
+                } else {
+                    outputs_revoked(b, u->ev.rc);
+                    access_input(b, u, ACCESS_IN_AC);
+                }
+            }
+        while (++u < b->task + RCX_TASKS);
+    }
     return 1;
 }
 
-/* The consequence of a granted request: holders of equal or lower priority lose everything they hold, their
- * motors brake (p. 98) and they take the AC input. Its cells have no IF, so no request is made from here. */
-static void revoke(struct rcx *b, const struct rcx_task *t, u8 res)
+/* ENTER EV: MON, LBL. */
+void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target)
 {
-    struct rcx_task *u;
-
-    for (u = b->task; u < b->task + RCX_TASKS; u++)
-        if (u != t && (u->ev.rc & res)) {
-            outputs_revoked(b, u->ev.rc);
-            perform(b, u, access_table[u->ev.state][ACCESS_IN_AC], 0, 0);
-        }
-}
-
-/* No recursion (the firmware's stack check refuses it): a SEND runs the cell it reaches in the same call, and the
- * AC inputs a request causes are performed directly. */
-void access_input(struct rcx *b, struct rcx_task *t, u8 input, u16 arg, u16 label)
-{
-    struct rcx_task_events *m = &t->ev;
-    u8 sends = 0;
-    u16 c;
-
-again:
-    c = access_table[m->state][input];
-    if (c & AC_LBL_IF) {
-        m->ac_pc = label;
-        m->ac_sub = t->sub;
-    }
-    if (((c & IF_MON) && arg == 0) || ((c & IF_OK) && !ok(b, t, (u8)arg))) {
-        if (c & ELSE_JUMP_LBL) {
-            jump(b, t, t->sub, label);
-        } else if ((c & (ELSE_SEND_AC | ELSE_SEND_EXIT_EV)) && !sends++) {
-            /* The cells a SEND reaches (columns AC and EXIT EV) have no IF: one re-dispatch is all there is. */
-            input = (c & ELSE_SEND_AC) ? ACCESS_IN_AC : ACCESS_IN_EXIT_EV;
-            goto again;
-        }
+    if (!mask) {
+        access_input(b, t, ACCESS_IN_EXIT_EV); /* SEND EXIT EV */
         return;
     }
-    if (c & IF_OK)
-        revoke(b, t, (u8)arg);
-    perform(b, t, c, arg, label);
+    t->ev.ev_pc = target;
+    t->ev.ev_sub = t->sub;
+    t->ev.mon = mask;
+    t->ev.state = ACCESS_HAS_AC(t->ev.state) ? ACCESS_AC_EV : ACCESS_EV;
 }
 
+/* ENTER AC: RES, LBL. No recursion (the firmware's stack check refuses it): the AC inputs a request causes are
+ * performed directly. The request changes other tasks only, so this task's state is still the one it had. */
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
 {
-    access_input(b, t, ACCESS_IN_ENTER_AC, resources, target);
-}
+    u8 ok = request(b, t, resources);
 
-void access_exit(struct rcx *b, struct rcx_task *t)
-{
-    access_input(b, t, ACCESS_IN_EXIT_AC, 0, 0);
+    /* AC=LBL: after the IF OK, or before it in the states with an access region. */
+    if (ok || ACCESS_HAS_AC(t->ev.state)) {
+        t->ev.ac_pc = target;
+        t->ev.ac_sub = t->sub;
+    }
+    if (!ok) {
+        /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the same
+         * place: what remains of it is EXIT AC, which does nothing outside an access region. */
+        jump(b, t, target);
+        access_input(b, t, ACCESS_IN_EXIT_AC);
+        return;
+    }
+    t->ev.rc = resources;
+    t->ev.state = ACCESS_HAS_EV(t->ev.state) ? ACCESS_EV_AC : ACCESS_AC;
 }

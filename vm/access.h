@@ -1,6 +1,6 @@
 /*
  * The access-control & event-monitoring state machine of spec p. 107, one per task (struct rcx_task_events).
- * Its states and inputs in the spec table's order; vm/access.c holds the table and runs it.
+ * Its states and inputs in the spec table's order; vm/access.c quotes the table and runs it.
  */
 #ifndef RCX_ACCESS_H
 #define RCX_ACCESS_H
@@ -20,22 +20,21 @@ enum access_state {
     ACCESS_STATES
 };
 
-/* Inputs (columns). EV and AC come from the firmware, the others from the task's own byte codes. */
+/* Inputs (columns) without operands. EV and AC come from the firmware, the others from the task's own byte codes.
+ * The inputs with operands, ENTER EV (S/LEnterEventCheck: MON, LBL) and ENTER AC (EnterAccessControl: RES, LBL), are
+ * events_monitor_enter() and access_enter() (vm/events.h). */
 enum access_input {
     ACCESS_IN_EV = 0,    /* a monitored event happened */
     ACCESS_IN_AC,        /* a task of equal or higher priority took some of RC */
     ACCESS_IN_EXIT_EV,   /* ExitEventCheck */
     ACCESS_IN_EXIT_AC,   /* ExitAccessControl */
-    ACCESS_IN_ENTER_EV,  /* S/LEnterEventCheck: MON, LBL */
-    ACCESS_IN_ENTER_AC,  /* EnterAccessControl: RES, LBL */
-    ACCESS_IN_END,       /* START, STOP, DELETE TASK */
-    ACCESS_INPUTS
+    ACCESS_IN_END        /* START, STOP, DELETE TASK */
 };
 
 #define ACCESS_HAS_EV(state) ((state) != ACCESS_NONE && (state) != ACCESS_AC) /* EV, EV->AC, AC->EV */
 #define ACCESS_HAS_AC(state) ((state) >= ACCESS_AC)                          /* AC, EV->AC, AC->EV */
 
-/* Feed one input to task t's machine. `arg` is MON (ENTER EV) or RES (ENTER AC), `label` their LBL. */
-void access_input(struct rcx *b, struct rcx_task *t, u8 input, u16 arg, u16 label);
+/* Feed one input to task t's machine (vm/access.c). */
+void access_input(struct rcx *b, struct rcx_task *t, u8 input);
 
 #endif

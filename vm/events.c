@@ -4,8 +4,8 @@
  * machine of vm/access.c.
  *
  * One evaluation works out everything that just happened to the event's sensor (as a set of event types: its
- * state moved, its boolean moved, a click completed...) and fires the event when its own type is in that set and
- * the spec's table of valid combinations allows the type on that kind of sensor.
+ * state moved, its boolean moved, a click completed...) and fires the event when its own type is in that set. The
+ * set only ever holds types the spec's table of valid combinations allows on that kind of sensor.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -13,27 +13,22 @@
 
 #define HAPPENED(type) ((u16)(1u << (type)))
 
-/* Kinds of sensor, the columns of the "valid combinations" table (p. 101). */
-#define K_ABS 0x01      /* input, absolute measurement (slope 0) */
-#define K_DYN 0x02      /* input, dynamic measurement (slope 1-31) */
-#define K_TIMER 0x04
-#define K_MSG 0x08
-#define K_COUNTER 0x10
-#define K_ALL (K_ABS | K_DYN | K_TIMER | K_MSG | K_COUNTER)
+/* Valid combinations (p. 101): the event types each kind of sensor can have. LOW, NORMAL, HIGH, CLICK and
+ * DOUBLE_CLICK can happen on every sensor; the others only where the engine computes them: PRESSED, RELEASED,
+ * PERIOD and TRANSITION on inputs measured absolutely (slope 0), PERIOD, TRANSITION and CHANGE_RATE on inputs
+ * measured dynamically (slope 1-31), MAILBOX on the message. So an event type is valid when SetEvent knows it, and
+ * the edges of an input's boolean are reported only as the types its slope allows (boolean_edge below). */
+#define VALID_TYPES (HAPPENED(RCX_EVENT_PRESSED) | HAPPENED(RCX_EVENT_RELEASED) | HAPPENED(RCX_EVENT_PERIOD) | \
+                     HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_CHANGE_RATE) | HAPPENED(RCX_EVENT_LOW) | \
+                     HAPPENED(RCX_EVENT_NORMAL) | HAPPENED(RCX_EVENT_HIGH) | HAPPENED(RCX_EVENT_CLICK) | \
+                     HAPPENED(RCX_EVENT_DOUBLE_CLICK) | HAPPENED(RCX_EVENT_MAILBOX))
 
-/* Valid combinations (p. 101): per event type, the kinds of sensor it can happen on. */
-static const u8 events_valid[RCX_EVENT_MAILBOX + 1] = {
-    [RCX_EVENT_PRESSED] = K_ABS,
-    [RCX_EVENT_RELEASED] = K_ABS,
-    [RCX_EVENT_PERIOD] = K_ABS | K_DYN,
-    [RCX_EVENT_TRANSITION] = K_ABS | K_DYN,
-    [RCX_EVENT_CHANGE_RATE] = K_DYN,
-    [RCX_EVENT_LOW] = K_ALL,
-    [RCX_EVENT_NORMAL] = K_ALL,
-    [RCX_EVENT_HIGH] = K_ALL,
-    [RCX_EVENT_CLICK] = K_ALL,
-    [RCX_EVENT_DOUBLE_CLICK] = K_ALL,
-    [RCX_EVENT_MAILBOX] = K_MSG,
+/* What an edge of the boolean means, by [slope != 0][new boolean]. */
+static const u8 boolean_edge[2][2] = {
+    { HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_RELEASED) | HAPPENED(RCX_EVENT_PERIOD),
+      HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_PRESSED) },
+    { HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_CHANGE_RATE) | HAPPENED(RCX_EVENT_PERIOD),
+      HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_CHANGE_RATE) },
 };
 
 /* Default lower and upper thresholds set by SetEvent (p. 71; hysteresis is always 0): physical sensor modes 0-7
@@ -41,6 +36,10 @@ static const u8 events_valid[RCX_EVENT_MAILBOX + 1] = {
 #define VIRTUAL_TIMER 8
 #define VIRTUAL_MESSAGE 9
 #define VIRTUAL_COUNTER 10
+static const u8 virtual_row[RCX_EVENT_SRC_LAST + 1 - RCX_SENSORS] = {
+    VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_MESSAGE,
+    VIRTUAL_COUNTER, VIRTUAL_COUNTER, VIRTUAL_COUNTER,
+};
 static const s16 events_default[11][2] = {
     { 0, 1023 },        /* raw */
     { 0, 1 },           /* boolean */
@@ -61,64 +60,59 @@ static const s16 events_default[11][2] = {
 #define CAL_HYSTERESIS_MODES 0x71u
 #define CAL_SAMPLES_PHYSICAL 8  /* p. 74 */
 
+/* The source of a cleared event: out of every range evaluate_sources() is asked for. */
+#define NO_SENSOR 0xFF
+
 /* Private flags of struct rcx_event. */
 #define F_BOOL 0x01     /* last boolean seen (inputs) */
 #define F_OUT 0x02      /* the state has left LOW: a click may be under way (click.left_low is its start) */
 #define F_HIGH 0x04     /* ... and has reached HIGH since */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
 
-static void clear(struct rcx_event *e)
+/* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. */
+static u8 bit_of(u16 set, u8 n)
 {
-    memset(e, 0, sizeof *e);
-    e->type = RCX_EVENT_NONE;
-    e->state = RCX_EVENT_STATE_UNDEFINED;
-    e->duration = 15; /* 150 ms, the click default of p. 71 */
-}
-
-void events_init(struct rcx *b)
-{
-    events_clear_all(b);
+    while (n--)
+        set >>= 1;
+    return (u8)(set & 1u);
 }
 
 /* Spec p. 25: tasks monitoring events are not told. */
 void events_clear_all(struct rcx *b)
 {
-    struct rcx_event *e;
-    for (e = b->event; e < b->event + RCX_EVENTS; e++)
-        clear(e);
-}
-
-/* The row of events_default for a sensor, which also picks its calibration formula. */
-static u8 sensor_class(const struct rcx *b, u8 source)
-{
-    if (source < RCX_SENSORS)
-        return (u8)(b->sensor[source].mode >> 5);
-    if (source < RCX_EVENT_SRC_MESSAGE)
-        return VIRTUAL_TIMER;
-    return source == RCX_EVENT_SRC_MESSAGE ? VIRTUAL_MESSAGE : VIRTUAL_COUNTER;
+    u8 ev;
+    for (ev = 0; ev < RCX_EVENTS; ev++)
+        events_set(b, ev, 0, RCX_EVENT_NONE);
 }
 
 void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
 {
     struct rcx_event *e;
-    const s16 *d;
+    u8 row;
 
-    if (ev >= RCX_EVENTS || source > RCX_EVENT_SRC_LAST)
+    /* 4-6, 13, 15 and above 16 are no event types; 16 clears the event. */
+    if (ev >= RCX_EVENTS || source > RCX_EVENT_SRC_LAST || (type != RCX_EVENT_NONE && !bit_of(VALID_TYPES, type)))
         return;
     e = &b->event[ev];
-    if (type != RCX_EVENT_NONE && (type > RCX_EVENT_MAILBOX || !events_valid[type]))
-        return; /* 4-6, 13, 15 and above 16 are no event types */
-    clear(e);
-    if (type == RCX_EVENT_NONE)
-        return;
-    d = events_default[sensor_class(b, source)];
-    e->source = source;
+    memset(e, 0, sizeof *e);
     e->type = type;
-    e->lower = d[0];
-    e->upper = d[1];
-    /* Edges are counted from here on, not from whatever the input did before. */
-    if (source < RCX_SENSORS && b->sensor[source].boolean)
-        e->flags = F_BOOL;
+    e->state = RCX_EVENT_STATE_UNDEFINED;
+    e->duration = 15; /* 150 ms, the click default of p. 71 */
+    if (type == RCX_EVENT_NONE) {
+        e->source = NO_SENSOR; /* never evaluated */
+        return;
+    }
+    e->source = source;
+    if (source < RCX_SENSORS) {
+        row = (u8)(b->sensor[source].mode >> 5);
+        /* Edges are counted from here on, not from whatever the input did before. */
+        if (b->sensor[source].boolean)
+            e->flags = F_BOOL;
+    } else {
+        row = virtual_row[source - RCX_SENSORS];
+    }
+    e->lower = events_default[row][0];
+    e->upper = events_default[row][1];
 }
 
 void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
@@ -152,131 +146,124 @@ static s16 add_sat(s16 a, s16 b)
     return r;
 }
 
-/* One calibration sample (pp. 74, 103-105). UT = Avg + Avg*UTFct/k1 (+ H), LT = Avg - Avg*LTFct/k1 (- H),
- * H = AvgRaw*HFct/k2 for the raw-scale modes and 0 otherwise; k1 = 256, k2 = 2048 (H is (AvgRaw*HFct/256)/8).
- * The average of 8 is kept as the sum of value/8 plus the sum of the remainders, which stays within 16 bits. */
-static void calibrate_sample(struct rcx *b, struct rcx_event *e, s16 avg)
+/* One calibration sample (pp. 74, 103-105) of `in`, the input measured (NULL: a virtual sensor, one sample).
+ * UT = Avg + Avg*UTFct/k1 (+ H), LT = Avg - Avg*LTFct/k1 (- H), H = AvgRaw*HFct/k2 for the raw-scale modes and 0
+ * otherwise; k1 = 256, k2 = 2048 (H is (AvgRaw*HFct/256)/8). The average of 8 is kept as the sum of value/8 plus the
+ * sum of the remainders, which stays within 16 bits. The hysteresis changes only when the thresholds do. */
+static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
-    u8 mode = sensor_class(b, e->source);
-    s16 h = 0;
+    struct rcx_event_cal *c = &e->u.cal;
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
-    if (mode < 8) {
-        e->u.cal.sum8 = (s16)(e->u.cal.sum8 + (avg >> 3));
-        e->u.cal.rem = (u8)(e->u.cal.rem + (avg & 7));
-        e->u.cal.raw_sum = (u16)(e->u.cal.raw_sum + b->sensor[e->source].raw);
-        if (++e->u.cal.count < CAL_SAMPLES_PHYSICAL)
+    if (in) {
+        c->sum8 = (s16)(c->sum8 + (avg >> 3));
+        c->rem = (u8)(c->rem + (avg & 7));
+        c->raw_sum = (u16)(c->raw_sum + in->raw);
+        if (++c->count < CAL_SAMPLES_PHYSICAL)
             return;
-        avg = (s16)(e->u.cal.sum8 + (e->u.cal.rem >> 3));
-        if ((CAL_HYSTERESIS_MODES >> mode) & 1)
-            h = (s16)((u16)fraction((s16)(e->u.cal.raw_sum >> 3), e->u.cal.pct[2]) >> 3);
+        avg = (s16)(c->sum8 + (c->rem >> 3));
+        e->hysteresis = bit_of(CAL_HYSTERESIS_MODES, (u8)(in->mode >> 5))
+                            ? (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3) : 0;
+    } else {
+        e->hysteresis = 0;
     }
-    e->lower = add_sat(add_sat(avg, (s16)-fraction(avg, e->u.cal.pct[0])), (s16)-h);
-    e->upper = add_sat(add_sat(avg, fraction(avg, e->u.cal.pct[1])), h);
-    e->hysteresis = h;
-    e->flags &= F_BOOL;
-    e->state = RCX_EVENT_STATE_UNDEFINED;
+    /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
+    e->lower = add_sat((s16)(avg - fraction(avg, c->pct[0])), (s16)-e->hysteresis);
+    e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+    e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 
-/* Click bookkeeping on a state change (p. 102): a click is LOW -> HIGH -> LOW within the duration; a double click
- * is a click that starts within the duration after the previous click ended. Returns what happened. */
-static u16 click(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
+/* A change of state to `to` from a known state: the range entered, and the click bookkeeping (p. 102): a click is
+ * LOW -> HIGH -> LOW within the duration; a double click is a click that starts within the duration after the
+ * previous click ended. Returns the event types that happened, all of them 8-15: bit n is type 8 + n. */
+#define TYPE_8(type) ((u8)(1u << ((type) - 8)))
+static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
 {
-    u16 now = b->ticks10, happened = 0, dur = (u16)e->duration;
+    u16 now = b->ticks10;
+    u8 f = e->flags, happened = (u8)(TYPE_8(RCX_EVENT_LOW) << to); /* LOW, NORMAL, HIGH follow the states */
 
-    if (from == RCX_EVENT_STATE_LOW) {
+    if (e->state == RCX_EVENT_STATE_LOW) {
         e->u.click.left_low = now;
-        e->flags = (u8)((e->flags & ~F_HIGH) | F_OUT);
-    }
-    if (to == RCX_EVENT_STATE_HIGH)
-        e->flags |= F_HIGH;
-    if (to == RCX_EVENT_STATE_LOW && (e->flags & (F_OUT | F_HIGH)) == (F_OUT | F_HIGH)) {
-        if ((u16)(now - e->u.click.left_low) <= dur) {
-            e->clicks = (s16)(u16)((u16)e->clicks + 1u);
-            happened = HAPPENED(RCX_EVENT_CLICK);
-            if ((e->flags & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= dur) {
-                happened |= HAPPENED(RCX_EVENT_DOUBLE_CLICK);
-                e->flags &= (u8)~F_FIRST;
+        f = (u8)((f & ~F_HIGH) | F_OUT);
+    } else if (to == RCX_EVENT_STATE_LOW) {
+        if ((f & F_OUT) && (f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
+            e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
+            happened |= TYPE_8(RCX_EVENT_CLICK);
+            if ((f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
+                happened |= TYPE_8(RCX_EVENT_DOUBLE_CLICK);
+                f &= (u8)~F_FIRST;
             } else {
-                e->flags |= F_FIRST;
+                f |= F_FIRST;
                 e->u.click.last_click = now;
             }
         }
-        e->flags &= (u8)~(F_OUT | F_HIGH);
+        /* Leaving LOW starts the next click afresh, so the progress can go in any case. */
+        f &= (u8)~(F_OUT | F_HIGH);
     }
+    if (to == RCX_EVENT_STATE_HIGH)
+        f |= F_HIGH;
+    e->flags = f;
     return happened;
+}
+
+/* The state `value` puts event e in. Hysteresis widens the range being left (reference-firmware.md): HIGH holds
+ * while value > upper - h, LOW while value < lower + h. Moved thresholds stop at the 16-bit limits. */
+static u8 classify(const struct rcx_event *e, s16 value)
+{
+    if (value > (e->state == RCX_EVENT_STATE_HIGH ? add_sat(e->upper, (s16)-e->hysteresis) : e->upper))
+        return RCX_EVENT_STATE_HIGH;
+    if (value < (e->state == RCX_EVENT_STATE_LOW ? add_sat(e->lower, e->hysteresis) : e->lower))
+        return RCX_EVENT_STATE_LOW;
+    return RCX_EVENT_STATE_NORMAL;
 }
 
 /* Evaluate event e against its sensor's present value; `happened` brings what the caller already knows (a
  * mailbox). Returns non-zero when the event fires. */
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u16 happened)
 {
-    u8 s = e->source, from = e->state, to, kind, type;
-    s16 value, up, lo;
-    u16 enter;
+    const struct rcx_sensor *in = NULL;
+    u8 s = e->source, to;
+    s16 value;
 
     if (s < RCX_SENSORS) {
-        const struct rcx_sensor *in = &b->sensor[s];
+        in = &b->sensor[s];
         value = in->value;
-        kind = (in->mode & 0x1F) ? K_DYN : K_ABS;
-        if ((u8)(in->boolean != 0) != (e->flags & F_BOOL)) {
+        if (((in->boolean != 0) ^ e->flags) & F_BOOL) {
             e->flags ^= F_BOOL;
-            happened |= HAPPENED(RCX_EVENT_TRANSITION) | HAPPENED(RCX_EVENT_CHANGE_RATE) |
-                        ((e->flags & F_BOOL) ? HAPPENED(RCX_EVENT_PRESSED)
-                                             : HAPPENED(RCX_EVENT_RELEASED) | HAPPENED(RCX_EVENT_PERIOD));
+            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][e->flags & F_BOOL];
         }
     } else if (s < RCX_EVENT_SRC_MESSAGE) {
         value = (s16)b->timer[s - RCX_EVENT_SRC_TIMER];
-        kind = K_TIMER;
     } else if (s == RCX_EVENT_SRC_MESSAGE) {
         value = b->message;
-        kind = K_MSG;
     } else {
         value = b->global[s - RCX_EVENT_SRC_COUNTER];
-        kind = K_COUNTER;
     }
-    if (from >= RCX_EVENT_STATE_CAL_START) {
-        calibrate_sample(b, e, value);
+    if (e->state >= RCX_EVENT_STATE_CAL_START) {
+        calibrate_sample(in, e, value);
         return 0;
     }
-    /* Hysteresis widens the range being left (reference-firmware.md): HIGH holds while value > upper - h, LOW while
-     * value < lower + h. Moved thresholds stop at the 16-bit limits. */
-    up = e->upper;
-    lo = e->lower;
-    if (from == RCX_EVENT_STATE_HIGH)
-        up = add_sat(up, (s16)-e->hysteresis);
-    else if (from == RCX_EVENT_STATE_LOW)
-        lo = add_sat(lo, e->hysteresis);
-    if (value > up) {
-        to = RCX_EVENT_STATE_HIGH;
-        enter = HAPPENED(RCX_EVENT_HIGH);
-    } else if (value < lo) {
-        to = RCX_EVENT_STATE_LOW;
-        enter = HAPPENED(RCX_EVENT_LOW);
-    } else {
-        to = RCX_EVENT_STATE_NORMAL;
-        enter = HAPPENED(RCX_EVENT_NORMAL);
-    }
-    if (to != from) {
-        e->state = to;
-        /* The first classification after SetEvent or a calibration is not a change of range. */
-        if (from != RCX_EVENT_STATE_UNDEFINED)
-            happened |= (u16)(enter | click(b, e, from, to));
-    }
-    for (type = e->type; type; type--)
-        happened >>= 1;
-    return (u8)(happened & 1 & (events_valid[e->type] & kind ? 1 : 0));
+    to = classify(e, value);
+    /* The first classification after SetEvent or a calibration is not a change of range. */
+    if (to != e->state && e->state != RCX_EVENT_STATE_UNDEFINED)
+        happened |= (u16)((u16)changed(b, e, to) << 8);
+    e->state = to;
+    return bit_of(happened, e->type);
 }
 
-/* Evaluate every event on sensors from..to and tell the tasks. */
-static void evaluate_sources(struct rcx *b, u8 from, u8 to, u16 happened)
+/* Evaluate every event on sensors from..to and tell the tasks. Only events_message_changed() starts at the message:
+ * a mailbox event happened. */
+static void evaluate_sources(struct rcx *b, u8 from, u8 to)
 {
     struct rcx_event *e = b->event;
-    u16 bit, fired = 0;
+    u16 bit = 1, fired = 0;
 
-    for (bit = 1; bit; bit <<= 1, e++)
-        if (e->type != RCX_EVENT_NONE && e->source >= from && e->source <= to && evaluate(b, e, happened))
+    do {
+        if (e->source >= from && e->source <= to &&
+            evaluate(b, e, from == RCX_EVENT_SRC_MESSAGE ? HAPPENED(RCX_EVENT_MAILBOX) : 0))
             fired |= bit;
+        e++;
+    } while (bit <<= 1);
     if (fired)
         events_raise(b, fired);
 }
@@ -285,32 +272,33 @@ static void evaluate_sources(struct rcx *b, u8 from, u8 to, u16 happened)
  * events that reached it are kept for source 23. */
 void events_raise(struct rcx *b, u16 mask)
 {
-    struct rcx_task *t;
+    struct rcx_task *t = b->task;
 
-    for (t = b->task; t < b->task + RCX_TASKS; t++)
+    do
         if (ACCESS_HAS_EV(t->ev.state) && (t->ev.mon & mask)) {
             t->ev.events = (u16)(t->ev.mon & mask);
-            access_input(b, t, ACCESS_IN_EV, 0, 0);
+            access_input(b, t, ACCESS_IN_EV);
         }
+    while (++t < b->task + RCX_TASKS);
 }
 
 void events_counter_changed(struct rcx *b, u8 n)
 {
     u8 s = (u8)(RCX_EVENT_SRC_COUNTER + n);
     if (n < RCX_COUNTERS)
-        evaluate_sources(b, s, s, 0);
+        evaluate_sources(b, s, s);
 }
 
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 void events_message_changed(struct rcx *b)
 {
-    evaluate_sources(b, RCX_EVENT_SRC_MESSAGE, RCX_EVENT_SRC_MESSAGE, HAPPENED(RCX_EVENT_MAILBOX));
+    evaluate_sources(b, RCX_EVENT_SRC_MESSAGE, RCX_EVENT_SRC_MESSAGE);
 }
 
 void events_input(struct rcx *b, u8 n)
 {
     if (n < RCX_SENSORS)
-        evaluate_sources(b, n, n, 0);
+        evaluate_sources(b, n, n);
 }
 
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
@@ -319,22 +307,7 @@ void events_input(struct rcx *b, u8 n)
 void events_tick(struct rcx *b)
 {
     if (b->ms == 0)
-        evaluate_sources(b, RCX_EVENT_SRC_TIMER, RCX_EVENT_SRC_LAST, 0);
-}
-
-void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target)
-{
-    access_input(b, t, ACCESS_IN_ENTER_EV, mask, target);
-}
-
-void events_monitor_exit(struct rcx *b, struct rcx_task *t)
-{
-    access_input(b, t, ACCESS_IN_EXIT_EV, 0, 0);
-}
-
-void events_task_ended(struct rcx *b, struct rcx_task *t)
-{
-    access_input(b, t, ACCESS_IN_END, 0, 0);
+        evaluate_sources(b, RCX_EVENT_SRC_TIMER, RCX_EVENT_SRC_LAST);
 }
 
 /* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on
@@ -343,8 +316,9 @@ void events_task_ended(struct rcx *b, struct rcx_task *t)
  * EXIT AC is sent instead. */
 void events_sub_returned(struct rcx *b, struct rcx_task *t)
 {
-    if (ACCESS_HAS_AC(t->ev.state) && t->ev.ac_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_AC, 0, 0);
-    if (ACCESS_HAS_EV(t->ev.state) && t->ev.ev_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_EV, 0, 0);
+    /* In a state without the region the input changes nothing (p. 107), so the labels alone decide. */
+    if (t->ev.ac_sub == t->sub)
+        access_input(b, t, ACCESS_IN_EXIT_AC);
+    if (t->ev.ev_sub == t->sub)
+        access_input(b, t, ACCESS_IN_EXIT_EV);
 }

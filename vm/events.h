@@ -7,6 +7,7 @@
 #define RCX_EVENTS_H
 
 #include "rcx_types.h"
+#include "access.h"
 
 struct rcx;
 struct rcx_task;
@@ -40,7 +41,7 @@ struct rcx_task;
 #define RCX_EVENT_STATE_CAL_BUSY 5
 
 struct rcx_event {
-    u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters */
+    u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters; 0xFF when cleared */
     u8 type;        /* see RCX_EVENT_*; RCX_EVENT_NONE when cleared */
     u8 state;       /* source 25 */
     u8 flags;       /* private to events.c: last boolean, click progress */
@@ -54,7 +55,7 @@ struct rcx_event {
             u16 left_low;   /* rcx.ticks10 when the state last left LOW */
             u16 last_click; /* rcx.ticks10 at the end of a click still waiting for its double */
         } click;
-        struct {
+        struct rcx_event_cal {
             s16 sum8;       /* of the values sampled so far, each divided by 8 ... */
             u8 rem;         /* ... and of the remainders of those divisions */
             u8 count;
@@ -76,22 +77,26 @@ struct rcx_task_events {
     u8 state;       /* ACCESS_NONE ... ACCESS_AC_EV (vm/access.h) */
 };
 
-void events_init(struct rcx *b);
+void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
+static inline void events_init(struct rcx *b) { events_clear_all(b); } /* power-on: every event cleared */
 void events_set(struct rcx *b, u8 ev, u8 source, u8 type);           /* SetEvent, operands checked */
 void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst); /* CalibrateEvent, byte order of p. 74 */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
-void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
 void events_counter_changed(struct rcx *b, u8 n);
 void events_message_changed(struct rcx *b);
 void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
 void events_tick(struct rcx *b);             /* every 1 ms */
 
-/* Monitoring and access control; `target` is the handler's pc in the task's current code object. */
+/* Monitoring and access control; `target` is the handler's pc in the task's current code object. The inputs without
+ * operands are one call of the state machine (vm/access.h), made in place. */
 void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target);
-void events_monitor_exit(struct rcx *b, struct rcx_task *t);
+static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target);
-void access_exit(struct rcx *b, struct rcx_task *t);
-void events_task_ended(struct rcx *b, struct rcx_task *t);   /* start/stop/delete: release, forget */
+static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
+static inline void events_task_ended(struct rcx *b, struct rcx_task *t) /* start/stop/delete: release, forget */
+{
+    access_input(b, t, ACCESS_IN_END);
+}
 void events_sub_returned(struct rcx *b, struct rcx_task *t); /* EndOfSub: leave regions entered in the sub */
 
 #endif

@@ -12,8 +12,8 @@
 
 RCX_STATIC_ASSERT(uartconf_is_hal_mode, HAL_IR_4800 == 1 && HAL_IR_76KHZ == 2 && HAL_IR_DUTY25 == 4);
 
-/* Index of the lowest set bit of a non-zero value. */
-static u8 lowest_bit(u16 v)
+/* Index of the lowest set bit of a non-zero byte. */
+static u8 lowest_bit(u8 v)
 {
     u8 n = 0;
     while (!(v & 1u)) {
@@ -39,34 +39,32 @@ void remote_command(struct rcx *b, u16 bits)
     if (pressed & REMOTE_PROGRAMS) {
         /* "prgm N, start 0" (spec p. 98): motors brake, the slot is selected and its task 0 started. */
         outputs_program_stop(b);
-        sched_select_program(b, (u8)(lowest_bit(pressed & REMOTE_PROGRAMS) - 1), 1);
+        sched_select_program(b, (u8)(lowest_bit((u8)(pressed & REMOTE_PROGRAMS)) - 1), 1);
     }
     if (pressed & REMOTE_SOUND)
         sound_system(b, REMOTE_SYSTEM_SOUND);
     if (pressed & REMOTE_MESSAGES) {
         /* As InternMessage would: PB message 1-3. */
-        b->message = (u8)(lowest_bit(pressed & REMOTE_MESSAGES) - 7);
+        b->message = (u8)(lowest_bit((u8)(pressed >> 8)) + 1);
         events_message_changed(b);
     }
 }
 
 void remote_send_message(struct rcx *b, u8 message)
 {
-    struct rcx_remote *r = &b->remote;
-    r->tx[0] = RCX_OP_MESSAGE;
-    r->tx[1] = message;
-    r->tx_len = 2;
-    r->tx_pack = 0x07; /* a standard packet, as any host sends it */
-    r->tx_mode = 0;
-    r->tx_msg = 1;
+    b->remote.tx[0] = RCX_OP_MESSAGE;
+    b->remote.tx[1] = message;
+    b->remote.tx_len = 2;
+    b->remote.tx_pack = 0x07; /* a standard packet, as any host sends it */
+    b->remote.tx_mode = 0;
+    b->remote.tx_msg = 1;
 }
 
 void remote_send_uart(struct rcx *b, u8 start, u8 size)
 {
-    struct rcx_remote *r = &b->remote;
-    memcpy(r->tx, b->uart + start, size); /* copied now: the program may rewrite the buffer before it goes out */
-    r->tx_len = size;
-    r->tx_pack = (u8)(b->uart[16] & 7u);
-    r->tx_mode = (u8)(b->uart[17] & 7u);
-    r->tx_msg = 0;
+    memcpy(b->remote.tx, b->uart + start, size); /* copied now: the program may rewrite the buffer before it goes out */
+    b->remote.tx_len = size;
+    b->remote.tx_pack = (u8)(b->uart[16] & 7u);
+    b->remote.tx_mode = (u8)(b->uart[17] & 7u);
+    b->remote.tx_msg = 0;
 }
