@@ -94,6 +94,20 @@ long brick_run_until_idle(struct rcx *b, unsigned max_ms, unsigned per_ms)
     return busy(b) ? -1 : (long)ms;
 }
 
+struct rcx *brick_copy(const struct rcx *b)
+{
+    struct rcx *s = malloc(sizeof *s);
+    if (!s)
+        abort();
+    memcpy(s, b, sizeof *s);
+    return s;
+}
+
+void brick_free_copy(struct rcx *copy)
+{
+    free(copy);
+}
+
 void brick_start(struct rcx *b, u8 n)
 {
     u8 cmd[2] = { 0x71, n };

@@ -25,6 +25,10 @@ void brick_run_ms(struct rcx *b, unsigned ms, unsigned per_ms);
 /* Run until no task is running or waiting, at most `max_ms`; returns the milliseconds used, or -1 on timeout. */
 long brick_run_until_idle(struct rcx *b, unsigned max_ms, unsigned per_ms);
 
+/* A byte-for-byte copy of the whole machine, to compare with later (brick_free_copy releases it). */
+struct rcx *brick_copy(const struct rcx *b);
+void brick_free_copy(struct rcx *copy);
+
 /* Start task n of the selected slot, as `nqc -run` does for task 0. */
 void brick_start(struct rcx *b, u8 n);
 

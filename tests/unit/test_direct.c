@@ -23,18 +23,10 @@ static const u8 spin[] = { 0x27, 0x81 };                                    /* j
 static const u8 call_sub0[] = { 0x17, 0x00, 0x27, 0x81 };                   /* calls 0 ; jmp 0 */
 static const u8 call_sub3[] = { 0x17, 0x03, 0x27, 0x81 };                   /* calls 3 ; jmp 0 */
 
-static struct rcx *snap(const struct rcx *b)
-{
-    struct rcx *s = malloc(sizeof *s);
-    assert_non_null(s);
-    memcpy(s, b, sizeof *s);
-    return s;
-}
-
 static void assert_unchanged(const struct rcx *b, struct rcx *s)
 {
     assert_memory_equal(b, s, sizeof *b);
-    free(s);
+    brick_free_copy(s);
 }
 
 static int running(const struct rcx *b, u8 n)
@@ -375,7 +367,7 @@ static void program_only_opcodes_ignored(void **state)
         for (t = 0; t < 2; t++) {
             struct rcx *b = busy_brick();
             u8 cmd[8] = { (u8)(program_only[i] | (t ? 0x08 : 0)), 0x00, 0x05, 0x02, 0x00, 0x81, 0x00, 0x00 };
-            struct rcx *s = snap(b);
+            struct rcx *s = brick_copy(b);
             if (brick_cmd(b, cmd, sizeof cmd, NULL) != 0)
                 fail_msg("program-only opcode %02X answered", cmd[0]);
             assert_unchanged(b, s);
@@ -394,7 +386,7 @@ static void unknown_opcodes_ignored(void **state)
         struct rcx *s;
         if (is_spec_opcode((u8)op))
             continue;
-        s = snap(b);
+        s = brick_copy(b);
         if (brick_cmd(b, cmd, sizeof cmd, NULL) != 0)
             fail_msg("unknown opcode %02X answered", op);
         assert_unchanged(b, s);
@@ -411,7 +403,7 @@ static void truncated_commands_ignored(void **state)
             continue; /* variable length: see truncated_download_block */
         for (len = 1; len < table[i].len; len++) {
             struct rcx *b = busy_brick();
-            struct rcx *s = snap(b);
+            struct rcx *s = brick_copy(b);
             if (brick_cmd(b, table[i].cmd, len, NULL) != 0)
                 fail_msg("opcode %02X truncated to %u bytes answered", table[i].cmd[0], len);
             assert_unchanged(b, s);
@@ -431,7 +423,7 @@ static void truncated_download_block(void **state)
     assert_int_equal(SEND(b, r, 0x25, 0, 0, 0, 4, 0), 2);
     assert_int_equal(r[1], 0);
     for (len = 1; len < sizeof full; len++) {
-        struct rcx *s = snap(b);
+        struct rcx *s = brick_copy(b);
         if (brick_cmd(b, full, len, r) != 0) {
             print_error("0x45 truncated to %u bytes answered (status %u)\n", len, r[1]);
             answered++;
@@ -624,7 +616,7 @@ static void boot_mode(void **state)
 static void rom_only_commands_unanswered(void **state)
 {
     struct rcx *b = busy_brick();
-    struct rcx *s = snap(b);
+    struct rcx *s = brick_copy(b);
     (void)state;
     assert_int_equal(SEND(b, NULL, 0x75, 0x00, 0x80, 0x34, 0x12, 0x00), 0);
     assert_int_equal(SEND(b, NULL, 0xA5, 0x4C, 0x45, 0x47, 0x4F, 0xAE), 0);

@@ -13,18 +13,10 @@
 #define SEND(b, r, ...) \
     brick_cmd((b), (const u8[]){ __VA_ARGS__ }, sizeof((const u8[]){ __VA_ARGS__ }), (r))
 
-static struct rcx *snap(const struct rcx *b)
-{
-    struct rcx *s = malloc(sizeof *s);
-    assert_non_null(s);
-    memcpy(s, b, sizeof *s);
-    return s;
-}
-
 static void assert_unchanged(const struct rcx *b, struct rcx *s)
 {
     assert_memory_equal(b, s, sizeof *b);
-    free(s);
+    brick_free_copy(s);
 }
 
 static s16 poll(struct rcx *b, u8 src, u8 idx)
@@ -98,7 +90,7 @@ static void variables(void **state)
     wr(b, 0, 7, 32767);
     assert_int_equal(rd(b, 0, 7), 32767);
     /* Direct commands have no locals (p. 5: only available to tasks in a running program). */
-    s = snap(b);
+    s = brick_copy(b);
     for (v = 32; v < 48; v++)
         wr(b, 0, v, 5);
     assert_unchanged(b, s);
@@ -176,7 +168,7 @@ static void read_only_sources_ignore_writes(void **state)
     (void)state;
     for (i = 0; i < sizeof ro / sizeof ro[0]; i++) {
         struct rcx *b = filled();
-        struct rcx *s = snap(b);
+        struct rcx *s = brick_copy(b);
         wr(b, ro[i][0], ro[i][1], 5);
         wr(b, ro[i][0], ro[i][1], -1);
         assert_unchanged(b, s);
@@ -191,7 +183,7 @@ static void undefined_sources(void **state)
     struct rcx *s;
     unsigned i, src;
     (void)state;
-    s = snap(b);
+    s = brick_copy(b);
     for (i = 0; i < sizeof holes; i++) {
         assert_int_equal(poll(b, holes[i], 0), 0);
         assert_int_equal(poll(b, holes[i], 1), 0);
@@ -222,7 +214,7 @@ static void out_of_range_indices(void **state)
     struct rcx *s;
     unsigned i;
     (void)state;
-    s = snap(b);
+    s = brick_copy(b);
     for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         if (poll(b, bad[i][0], bad[i][1]) != 0)
             fail_msg("source %u index %u does not read 0", bad[i][0], bad[i][1]);
@@ -420,7 +412,7 @@ static void sensors(void **state)
         assert_int_equal(poll(b, 10, 2), t);
         assert_int_equal(poll(b, 11, 2), mode[t]);
     }
-    s = snap(b);
+    s = brick_copy(b);
     wr(b, 10, 1, 5);                           /* not a sensor type */
     wr(b, 10, 1, -1);
     SEND(b, NULL, 0x32, 1, 5);
@@ -575,7 +567,7 @@ static void indirect(void **state)
      * specified (0x8000 for a plain local poll), so it is not checked. */
     for (i = 0; i < sizeof bad_ptr / sizeof bad_ptr[0]; i++) {
         wr(b, 0, 5, bad_ptr[i]);
-        s = snap(b);
+        s = brick_copy(b);
         if (bad_ptr[i] < 32 || bad_ptr[i] > 47)
             assert_int_equal(poll(b, 36, 5), 0);
         wr(b, 36, 5, 1);
