@@ -10,84 +10,81 @@ const u8 hw_sensor_power_bit[3] = { 0x04, 0x02, 0x01 };
 
 void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
 {
-    static const u8 shift[3] = { 6, 2, 0 }; /* A in bits 7-6, B in 3-2, C in 1-0 */
+    static const u8 weight[3] = { 64, 4, 1 }; /* A in bits 7-6, B in 3-2, C in 1-0 */
+    u8 *out;
 
     if (port > 2)
         return;
-    mode &= 3;
     if (level > 7)
         level = 7;
-    m->bits[port] = (u8)(mode << shift[port]);
+    out = m->out[port];
+    mode &= 3;
+    out[0] = (u8)(mode * weight[port]); /* a byte multiply is one instruction, a shift by a variable a loop */
     /* A brake shorts the motor: holding is all it does, so it is never pulsed. */
-    m->pattern[port] = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
+    out[1] = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
 }
 
 /* One phase for all outputs, so that a new level takes over at the next millisecond without restarting a frame. */
 u8 hw_motor_step(struct hw_motors *m)
 {
-    u8 phase = m->phase ? m->phase : 1;
-    u8 latch = 0;
+    u8 phase = m->phase ? m->phase : 1, latch = 0;
 
-    if (m->pattern[0] & phase)
-        latch = m->bits[0];
-    if (m->pattern[1] & phase)
-        latch |= m->bits[1];
-    if (m->pattern[2] & phase)
-        latch |= m->bits[2];
+    /* Unrolled: this runs in the tick interrupt. */
+    if (m->out[0][1] & phase)
+        latch = m->out[0][0];
+    if (m->out[1][1] & phase)
+        latch |= m->out[1][0];
+    if (m->out[2][1] & phase)
+        latch |= m->out[2][0];
     m->phase = (u8)(phase << 1);
     return latch;
 }
 
 /*
- * raw × 43988 / 1560 (§3.4) = raw × 10997 / 390. The product needs 24 bits, formed as raw × 43 × 256 − raw × 11
- * so that no 32-bit multiply helper is linked; the quotient needs 16, so two 8-bit steps of long division do.
+ * raw × 43988 / 1560 (§3.4) = raw × 10997 / 390 = raw × 28 + raw × 77 / 390, and raw × 77 / 390 (rounded down)
+ * = (raw × 77 / 2) / 195 = (raw × 38 + raw / 2) / 195: at most 39 385 / 195 = 201, a quotient a single 16-by-8-bit
+ * division gives. Nothing needs more than 16 bits.
  */
 u16 hw_battery_mv(u16 raw10)
 {
-    u16 rem;
-    u32 p;
-
     if (raw10 > 1023)
         raw10 = 1023;
-    p = ((u32)(u16)(raw10 * 43u) << 8) - (u16)(raw10 * 11u);
-    rem = (u16)(p >> 16); /* at most 171, below the divisor as rcx_udiv8 requires */
-    return rcx_udiv8(rcx_udiv8((u16)p, 390, &rem), 390, &rem);
+    return (u16)(raw10 * 28u + rcx_divu8((u16)(raw10 * 38u + (raw10 >> 1)), 195));
 }
 
 /*
- * TMR0 clocks from fastest to slowest (§3.7 table: TCR clock select, STCR.ICKS0), each as 15625 Hz << shift, with
- * the lowest tone it can make with an 8-bit TCORA (the rounded clock / 2 hz at most 256: clock / 513, plus one).
- * The fastest usable clock gives the finest steps: the clocks are at most 4 apart, so TCORA + 1 ends up at 64 or
- * more and no tone is off by more than 0.8 %.
+ * TMR0 clocks from fastest to slowest (§3.7 table: TCR clock select 9 + i / 2, STCR.ICKS0 1 for even i), each
+ * with the lowest tone it can make with an 8-bit TCORA (the rounded clock / 2 hz at most 256: clock / 513, plus
+ * one). The fastest usable clock gives the finest steps: the clocks are at most 4 apart, so TCORA + 1 ends up at
+ * 64 or more and no tone is off by more than 0.8 %.
  */
-static const struct {
-    u16 min_hz;
-    u8 shift, tcr;
-} tone_clock[6] = {
-    { 15595, 9, 0x09 },        /* φ/2,    8 MHz (CKS 01, ICKS0 1) */
-    { 3899, 7, 0x09 },         /* φ/8,    2 MHz (CKS 01, ICKS0 0) */
-    { 975, 5, 0x0A },          /* φ/32, 500 kHz (CKS 10, ICKS0 1) */
-    { 488, 4, 0x0A },          /* φ/64, 250 kHz (CKS 10, ICKS0 0) */
-    { 122, 2, 0x0B },          /* φ/256, 62.5 kHz (CKS 11, ICKS0 1) */
-    { 31, 0, 0x0B },           /* φ/1024, 15.6 kHz (CKS 11, ICKS0 0) */
+static const u16 tone_clock[6][3] = {
+    /* lowest tone, clock in Hz as high and low word */
+    { 15595, 0x007A, 0x1200 }, /* φ/2,    8 MHz (CKS 01, ICKS0 1) */
+    { 3899, 0x001E, 0x8480 },  /* φ/8,    2 MHz (CKS 01, ICKS0 0) */
+    { 975, 0x0007, 0xA120 },   /* φ/32, 500 kHz (CKS 10, ICKS0 1) */
+    { 488, 0x0003, 0xD090 },   /* φ/64, 250 kHz (CKS 10, ICKS0 0) */
+    { 122, 0x0000, 0xF424 },   /* φ/256, 62.5 kHz (CKS 11, ICKS0 1) */
+    { 31, 0x0000, 0x3D09 },    /* φ/1024, 15.6 kHz (CKS 11, ICKS0 0) */
 };
 
 u8 hw_tone(u16 hz, struct hw_tone *t)
 {
+    const u16 *c = tone_clock[0];
     u8 i = 0;
-    u16 rem;
-    u32 n;
+    u16 lo;
 
     if (hz < 31 || hz > 20000)
         return 0; /* the ROM's play-tone range; outside it a rest */
-    while (hz < tone_clock[i].min_hz)
+    while (hz < *c) {
+        c += 3;
         i++;
-    /* TCORA + 1 = clock / (2 hz), rounded; below 257, so its 16 bits come out of two long-division steps. */
-    n = ((u32)15625 << tone_clock[i].shift) + hz;
-    rem = (u16)(n >> 16);
-    t->tcora = (u8)(rcx_udiv8(rcx_udiv8((u16)n, (u16)(2 * hz), &rem), (u16)(2 * hz), &rem) - 1);
-    t->tcr = tone_clock[i].tcr; /* 08 = clear on compare match A, plus the clock select */
-    t->icks0 = (u8)(i & 1 ? 0 : 1);
+    }
+    /* TCORA + 1 = clock / (2 hz), rounded: (clock + hz) / (2 hz), a dividend of up to 23 bits */
+    lo = (u16)(c[2] + hz);
+    t->tcora = (u8)(rcx_udiv32_16(lo, (u16)(2 * hz), (u16)(c[1] + (lo < hz))) - 1);
+    t->tcr = (u8)(0x09 + (i >> 1)); /* 08 = clear on compare match A, plus the clock select */
+    t->icks0 = (u8)(~i & 1);
     return 1;
 }
 
@@ -106,18 +103,19 @@ u8 hw_sci_brr(u8 mode)
  */
 void hw_carrier(u8 mode, struct hw_carrier *c)
 {
-    u8 fast = (u8)(mode & HAL_IR_76KHZ);
+    static const u8 setting[4][4] = {
+        /* TCR, TCSR, TCORA, TCORB */
+        { 0x09, 0x13, 26, 0xFF }, /* 38 kHz, 50 %: toggle on A */
+        { 0x09, 0x13, 12, 0xFF }, /* 76 kHz, 50 % */
+        { 0x09, 0x16, 53, 13 },   /* 38 kHz, 25 %: output 1 on A, 0 on B (bit 4 reads as 1) */
+        { 0x09, 0x16, 25, 6 },    /* 76 kHz, 25 % */
+    };
+    const u8 *s = setting[(mode & (HAL_IR_76KHZ | HAL_IR_DUTY25)) >> 1];
+    u8 *d = (u8 *)c, n = 4; /* the struct's bytes, in the table's order */
 
-    c->tcr = 0x09;
-    if (mode & HAL_IR_DUTY25) {
-        c->tcsr = 0x16; /* output 1 on A, 0 on B (bit 4 reads as 1) */
-        c->tcora = fast ? 25 : 53;
-        c->tcorb = fast ? 6 : 13;
-    } else {
-        c->tcsr = 0x13; /* toggle on A */
-        c->tcora = fast ? 12 : 26;
-        c->tcorb = 0xFF;
-    }
+    do
+        *d++ = *s++;
+    while (--n);
 }
 
 /*
@@ -133,7 +131,7 @@ u8 hw_debounce(struct hw_debounce *d, u8 raw)
         d->count = 0;
     }
     if (!diff || ++d->count < HW_DEBOUNCE_MS)
-        return 0;
+        return 0; /* the usual case, every millisecond: nothing written */
     d->state = raw;
     d->cand = 0;
     d->count = 0;
@@ -155,14 +153,17 @@ u8 hw_debounce(struct hw_debounce *d, u8 raw)
 
 u8 hw_lcd_on_frame(const u8 *image, u8 *frame)
 {
-    u8 i;
+    static const u8 head[4] = { LCD_ADDRESS, LCD_MORE | LCD_MODE_ON, LCD_MORE | LCD_SELECT, 0 };
+    const u8 *s = head;
+    u8 n = 4;
 
-    frame[0] = LCD_ADDRESS;
-    frame[1] = LCD_MORE | LCD_MODE_ON;
-    frame[2] = LCD_MORE | LCD_SELECT;
-    frame[3] = 0;
-    for (i = 0; i < HW_LCD_BYTES; i++)
-        frame[4 + i] = image[i];
+    do
+        *frame++ = *s++;
+    while (--n);
+    n = HW_LCD_BYTES;
+    do
+        *frame++ = *image++;
+    while (--n);
     return 4 + HW_LCD_BYTES;
 }
 
@@ -178,24 +179,27 @@ void hw_rx_put(struct hw_rx *r, u8 byte, u8 error)
 {
     u8 i = r->head;
 
-    if ((u8)(i - r->tail) >= HW_RX_SIZE) {
-        r->error[(u8)(i - 1) & (HW_RX_SIZE - 1)] = 1;
-        return;
+    if ((u8)(i - r->tail) < HW_RX_SIZE) {
+        r->data[i & (HW_RX_SIZE - 1)] = byte;
+        r->head = (u8)(i + 1); /* the interrupt's own doing: the main loop reads nothing until it returns */
+    } else {
+        i--;
+        error = 1;
     }
-    r->data[i & (HW_RX_SIZE - 1)] = byte;
     r->error[i & (HW_RX_SIZE - 1)] = error;
-    r->head = (u8)(i + 1);
 }
 
 /* The slot is read completely before `tail` frees it for the interrupt. */
 u8 hw_rx_get(struct hw_rx *r, u8 *byte)
 {
-    u8 i = r->tail, got;
+    u8 t = r->tail, got = 0;
 
-    if (i == r->head)
-        return 0;
-    *byte = r->data[i & (HW_RX_SIZE - 1)];
-    got = (u8)(r->error[i & (HW_RX_SIZE - 1)] ? 2 : 1);
-    r->tail = (u8)(i + 1);
+    if (t != r->head) {
+        u8 i = t & (HW_RX_SIZE - 1);
+
+        *byte = r->data[i];
+        got = (u8)(r->error[i] ? 2 : 1);
+        r->tail = (u8)(t + 1);
+    }
     return got;
 }

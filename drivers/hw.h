@@ -11,8 +11,8 @@
 /* Motors (§3.2). One latch byte for all three outputs, two bits each; speed is an 8 ms on/off pattern per level. */
 extern const u8 hw_pwm_pattern[8];
 struct hw_motors {
-    u8 bits[3];     /* the output's direction bits, already in their latch position */
-    u8 pattern[3];  /* bit n set: on in millisecond n of the 8 */
+    u8 out[3][2];   /* per output: its direction bits, already in their latch position, and its pattern (bit n
+                     * set: on in millisecond n of the 8) */
     u8 phase;       /* one bit, the millisecond of the 8 that comes next; 0 before the first step */
 };
 void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level);

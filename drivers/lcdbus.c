@@ -13,22 +13,16 @@ void hw_lcd_send(const u8 *frame, u8 n)
     HW_SDA_LO(); /* START: SDA falls while SCL is high */
     HW_SCL_LO();
     while (n--) {
-        u8 v = *frame++, i = 8;
+        u8 v = *frame++, i = 9;
 
+        /* Eight bits, then the acknowledge clock with SDA driven low, a ninth bit 0 shifted in: that is the level
+         * the controller pulls it to, so nothing fights over the line and SDA never has to become an input (the
+         * acknowledge itself is not needed). */
         do {
-            if (v & 0x80)
-                HW_SDA_HI();
-            else
-                HW_SDA_LO();
+            HW_SDA_MSB(v); /* SDA = bit 7 of v, v shifted left */
             HW_SCL_HI();
             HW_SCL_LO();
-            v = (u8)(v << 1);
         } while (--i);
-        /* The acknowledge clock with SDA driven low: that is the level the controller pulls it to, so nothing
-         * fights over the line and SDA never has to become an input (the acknowledge itself is not needed). */
-        HW_SDA_LO();
-        HW_SCL_HI();
-        HW_SCL_LO();
     }
     HW_SCL_HI(); /* STOP: SDA rises while SCL is high; SDA is low after the last acknowledge clock */
     HW_SDA_HI();

@@ -3,7 +3,7 @@
 #   sections     text/data/bss as h8300-hms-size counts them (.onchip shows under data: it is not downloaded)
 #   image        bytes downloaded (0x8000 up to the end of code and constants), against the 16 384 budget
 #   free memory  the program-memory arena on an empty brick (memory map word 93 - word 92), from the link
-#   on-chip      interrupt variables at 0xFDC0 and the stack left above them
+#   on-chip      driver variables at 0xFDC0, the stack left above them, and the .eight bytes at the top
 #   checksum     what the ROM verifies: 16-bit sum of the image bytes 0x8000-0xCBFF (BeginFirmwareDownload)
 set -e
 dir="${1:-build/h8300}/drivers"
@@ -25,7 +25,7 @@ ${prefix}nm "$image" | awk '
         printf "free memory:  %5d bytes for programs and datalog (goal >= 12000)\n", sym["_rcx_arena_size"]
         printf "RAM:          code+data 0x8000-0x%04X, bss to 0x%04X of 0xF000\n", sym["_rcx_image_end"] - 1, sym["_rcx_bss_end"]
         onchip = sym["_rcx_onchip_end"] - sym["_rcx_onchip_start"]
-        printf "on-chip RAM:  %5d bytes of interrupt variables, %d bytes of stack\n", onchip, sym["_rcx_stack_top"] - sym["_rcx_onchip_end"]
+        printf "on-chip RAM:  %5d bytes of driver variables, %d bytes of stack, %d for bytes at 8-bit addresses\n", onchip, sym["_rcx_stack_top"] - sym["_rcx_onchip_end"], sym["_rcx_onchip_top"] - sym["_rcx_stack_top"]
     }'
 awk '
     function hex(s,   i, v) { v = 0; s = toupper(s)

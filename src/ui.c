@@ -3,18 +3,16 @@
  * every command received (the IR layer sets vm.idle_reset, spec p. 35; so do PBAliveOrNot and PBPowerDownTime)
  * restarts the power-down timer.
  */
+#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
 
+RCX_STATIC_ASSERT(watch_is_0, DISPLAY_WATCH == 0);
+
+/* Nothing idle yet, not switching off, View coming back to the watch, no battery mark. */
 void ui_init(struct rcx_brick *k)
 {
-    struct rcx_ui *ui = &k->ui;
-
-    ui->idle_ms = 0;
-    ui->idle_min = 0;
-    ui->off = 0;
-    ui->home_view = DISPLAY_WATCH;
-    ui->battery_low = 0;
+    memset(&k->ui, 0, sizeof k->ui);
 }
 
 static u8 program_running(const struct rcx *b)
@@ -51,27 +49,25 @@ void ui_button(struct rcx_brick *k, u8 button, u8 down)
     if (!down)
         return;
     b->idle_reset = 1;
-    switch (button) {
-    case RT_BUTTON_ONOFF:
+    if (button == RT_BUTTON_ONOFF) {
         k->ui.off = 1;
         return;
-    case RT_BUTTON_RUN: /* spec p. 98: "start 0" or "stop" */
-        if (program_running(b)) {
-            sched_stop_all(b);
-            outputs_program_stop(b);
-        } else {
-            outputs_program_start(b);
-            sched_start_task(b, 0);
-        }
-        break;
-    case RT_BUTTON_PRGM: /* spec p. 98 "prgm N"; selecting stops a running program */
-        sched_select_program(b, (u8)(b->prog + 1 < RCX_PROGRAMS ? b->prog + 1 : 0), 0);
-        outputs_program_stop(b);
-        break;
-    case RT_BUTTON_VIEW:
+    }
+    if (button == RT_BUTTON_VIEW) {
         next_view(k);
-        break;
-    default:
+    } else if (button == RT_BUTTON_RUN && !program_running(b)) { /* spec p. 98: "start 0" or "stop" */
+        outputs_program_start(b);
+        sched_start_task(b, 0);
+    } else if (button == RT_BUTTON_RUN || button == RT_BUTTON_PRGM) {
+        if (button == RT_BUTTON_RUN) {
+            sched_stop_all(b);
+        } else { /* spec p. 98 "prgm N"; selecting stops a running program */
+            u8 prog = (u8)(b->prog + 1);
+
+            sched_select_program(b, prog < RCX_PROGRAMS ? prog : 0, 0);
+        }
+        outputs_program_stop(b);
+    } else {
         return;
     }
     sound_ui(b, 0); /* key click */

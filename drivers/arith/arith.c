@@ -24,6 +24,7 @@
 #define ARITH_P_MODU32 10
 #define ARITH_P_DIVS32 11
 #define ARITH_P_MODS32 12
+#define ARITH_P_UDIV32_16 13
 
 #ifdef RCX_ARITH_PART
 #define ARITH_WANT(part) (RCX_ARITH_PART == ARITH_P_##part)
@@ -117,6 +118,17 @@ u16 rcx_udivmod16(u16 n, u16 d, u16 *rem)
         *rem = (u16)(n >> 8); /* < 0x100 <= d */
     }
     return rcx_udiv8((u16)((u16)(n << 8) | q_hi), d, rem);
+}
+#endif
+
+#if ARITH_WANT(UDIV32_16)
+/* On the brick this is arith16.s's division core; here the reference. */
+u16 rcx_udiv32_16(u16 lo, u16 d, u16 hi)
+{
+    u16 r = hi;
+
+    lo = rcx_udiv8(lo, d, &r);
+    return rcx_udiv8(lo, d, &r);
 }
 #endif
 

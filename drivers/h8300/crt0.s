@@ -22,7 +22,7 @@ _rcx_knock:
 	.byte	0
 	.align	1
 
-1:	mov.w	#_rcx_stack_top,r7	; own stack at the top of on-chip RAM; never return to the ROM
+1:	mov.w	#_rcx_standby_stub+16,r7 ; a stack below all that is cleared (FD80-FD8F: standby code later)
 	sub.b	r0l,r0l
 	mov.b	r0l,@0xc7:8		; IER (FFC7) = 0: IRQ0-2 off
 
@@ -30,26 +30,25 @@ _rcx_knock:
 	mov.w	#_rcx_ramvec_start,r0
 	mov.w	#_rcx_irq_ignore,r1
 	mov.w	#_rcx_ramvec_end,r2
-1:	mov.w	r1,@r0
-	adds	#2,r0
-	cmp.w	r2,r0
-	bne	1b
+	bsr	_rcx_fill
 
-	; Clear .bss and the variables in on-chip RAM; the linker script aligns all ends to words.
+	; Clear .bss, and on-chip RAM from its variables up: the stack and the .eight variables above it. The
+	; linker script aligns all ends to words.
 	sub.w	r1,r1
 	mov.w	#_rcx_bss_start,r0
 	mov.w	#_rcx_bss_end,r2
-	bsr	_rcx_clear
+	bsr	_rcx_fill
 	mov.w	#_rcx_onchip_start,r0
-	mov.w	#_rcx_onchip_end,r2
-	bsr	_rcx_clear
+	mov.w	#_rcx_onchip_top,r2
+	bsr	_rcx_fill
 
+	mov.w	#_rcx_stack_top,r7	; own stack at the top of on-chip RAM; never return to the ROM
 	jsr	@_main
 4:	orc	#0x80,ccr		; main does not return; if it did, stop quietly
 	bra	4b
 
 ; Words from r0 up to r2 (exclusive) = r1.
-_rcx_clear:
+_rcx_fill:
 	bra	3f
 2:	mov.w	r1,@r0
 	adds	#2,r0

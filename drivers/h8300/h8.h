@@ -15,6 +15,9 @@
  * where an interrupt handler writes other bits of the same register, only bset/bclr cannot undo its change. */
 #define H8_BSET(bit, addr) __asm__ __volatile__("bset\t#" #bit ",@" #addr ":8" ::: "memory")
 #define H8_BCLR(bit, addr) __asm__ __volatile__("bclr\t#" #bit ",@" #addr ":8" ::: "memory")
+/* A byte written to a register of page FFxx with 8-bit addressing: where a register is written twice, gcc keeps its
+ * address in a register (4 bytes, and one more register to save) instead. */
+#define H8_WRITE8(addr, v) __asm__ __volatile__("mov.b\t%X0,@" #addr ":8" ::"r"((u8)(v)) : "memory")
 
 /* Free-running timer (FRT): the 1 ms tick. */
 #define FRT_TIER H8_REG8(0xFF90)
@@ -109,5 +112,9 @@
 
 /* Placement in on-chip RAM (FDC0 up, below the stack): fast, and kept while external RAM sleeps. */
 #define RCX_ONCHIP __attribute__((section(".onchip")))
+/* Bytes in on-chip RAM at FF60-FF7F, above the stack: the page of the 8-bit absolute addresses, so that gcc reads
+ * and writes them with 2-byte instructions instead of 4 (section .eight, linker/openrcx.ld). Cleared at start;
+ * no initial values (the section is not downloaded). */
+#define RCX_EIGHT __attribute__((eightbit_data))
 
 #endif

@@ -10,19 +10,16 @@
 
 /* P6DDR is write-only: the shadow is its value. Bit 4 (speaker) is an output only while a tone plays. */
 #define P6DDR_AWAKE (P6_SENSORS | P6_AWAKE | P6_SCL | P6_SDA | P6_CARRIER)
-static u8 p6ddr;
+static u8 p6ddr RCX_EIGHT;
+#define p6ddr_set(v) (P6DDR = p6ddr = (u8)(v))
 
-static u16 tone_hz;
-static u8 lcd_shown[HAL_LCD_BYTES]; /* sent again after standby */
+/* On-chip, like all the drivers' variables: external RAM is left to the program memory. */
+static u16 tone_hz RCX_ONCHIP;
+/* The last LCD frame: the image it shows (from byte 4) is sent again after standby. */
+static u8 lcd_frame[HW_LCD_FRAME_MAX] RCX_ONCHIP;
 
 #define STANDBY_CODE ((u8 *)0xFD80)
 #define STANDBY_RTS 0xFD8E           /* the last instruction of the standby code, also the IRQ1 handler */
-
-static void p6ddr_set(u8 v)
-{
-    p6ddr = v;
-    P6DDR = v;
-}
 
 void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
 {
@@ -34,18 +31,21 @@ void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
  * for good once an input is no longer in the mask. */
 void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
+    u8 bit, power;
+
     (void)b;
     if (input > 2)
         return;
+    bit = hw_sensor_power_bit[input];
+    power = (u8)(drv_sensor_power & ~bit);
     if (on)
-        drv_sensor_power |= hw_sensor_power_bit[input];
-    else
-        drv_sensor_power &= (u8)~hw_sensor_power_bit[input];
+        power |= bit;
+    drv_sensor_power = power;
 }
 
 void hal_sound(struct rcx *b, u16 hz)
 {
-    struct hw_tone t;
+    static struct hw_tone t RCX_EIGHT;
 
     (void)b;
     if (hz == tone_hz)
@@ -57,8 +57,7 @@ void hal_sound(struct rcx *b, u16 hz)
         return;
     }
     TMR0_TCORA = t.tcora;
-    TMR0_TCNT = 0;
-    TMR0_TCSR = 0x03; /* toggle the output on compare match A */
+    TMR0_TCNT = 0; /* TCSR toggles the output on compare match A: set once by drv_outputs_on */
     H8_STCR = (u8)((H8_STCR & ~0x01) | t.icks0);
     p6ddr_set((u8)(p6ddr | P6_SPEAKER));
     TMR0_TCR = t.tcr;
@@ -66,18 +65,14 @@ void hal_sound(struct rcx *b, u16 hz)
 
 void hal_lcd(struct rcx *b, const u8 *image)
 {
-    u8 frame[HW_LCD_FRAME_MAX];
-
     (void)b;
-    memcpy(lcd_shown, image, HAL_LCD_BYTES);
-    hw_lcd_send(frame, hw_lcd_on_frame(image, frame));
+    hw_lcd_send(lcd_frame, hw_lcd_on_frame(image, lcd_frame));
 }
 
-/* Start-up and wake-up: the state of rcx-hardware.md 3.12. The IR link and the tick are started separately. */
+/* Start-up and wake-up: the state of rcx-hardware.md 3.12, and the IR link at its default settings. The tick is
+ * started separately. */
 void drv_outputs_on(void)
 {
-    u8 frame[HW_LCD_FRAME_MAX];
-
     MOTOR_LATCH = 0;
     P4DDR = 0x01;                 /* range out (its level is the IR layer's: kept through standby); buttons in */
     P5DR = 0;
@@ -87,15 +82,14 @@ void drv_outputs_on(void)
     TMR0_TCR = 0;
     TMR0_TCSR = 0x03;
     tone_hz = 0;
-    AD_ADCR &= 0x7F;              /* no external trigger */
+    H8_BCLR(7, 0xe9);             /* ADCR.TRGE: no external trigger */
     AD_ADCSR = 0;
-    hw_lcd_send(frame, hw_lcd_on_frame(lcd_shown, frame));
+    hal_lcd(0, lcd_frame + 4); /* the image it showed, copied onto itself */
+    sci_start(0);
 }
 
 void drv_outputs_off(u8 lcd)
 {
-    u8 frame[4];
-
     FRT_TIER = 0;                 /* no tick: no motor pattern, no A/D cycle */
     AD_ADCSR = 0;
     MOTOR_LATCH = 0;
@@ -105,7 +99,7 @@ void drv_outputs_off(u8 lcd)
     P6DR = P6_SCL | P6_SDA;       /* sensors, carrier and P6.3 low; LCD bus idle */
     p6ddr_set((u8)(p6ddr & ~(P6_SPEAKER | P6_AWAKE)));
     if (lcd) {
-        hw_lcd_send(frame, hw_lcd_off_frame(frame));
+        hw_lcd_send(lcd_frame, hw_lcd_off_frame(lcd_frame)); /* the image from byte 4 on stays */
         P6DR = 0;                 /* bus lines low: no current into the controller in standby */
     }
 }
@@ -132,20 +126,17 @@ void hal_power_off(struct rcx *b)
     h8_irq_disable();
     drv_outputs_off(1);
     wait_onoff_released(); /* else the release would wake the brick again at once */
-    memcpy(STANDBY_CODE, rcx_standby_code, (u16)(rcx_standby_code_end - rcx_standby_code));
-    RCX_RAMVEC(RCX_VEC_IRQ1) = STANDBY_RTS;
-    H8_ISCR |= H8_IRQ1;    /* falling edge */
-    H8_SYSCR = (u8)((H8_SYSCR & 0x0F) | H8_SYSCR_SSBY | H8_SYSCR_STS4);
-    H8_IER = H8_IRQ1;
+    memcpy(STANDBY_CODE, rcx_standby_code, 16); /* irq.s checks the size */
+    RCX_RAMVEC(RCX_VEC_IRQ1) = STANDBY_RTS; /* and so it stays: IRQ1 is only enabled here */
+    H8_BSET(1, 0xc6);      /* ISCR.IRQ1SC (H8_IRQ1): falling edge */
+    H8_WRITE8(0xc4, (H8_SYSCR & 0x0F) | H8_SYSCR_SSBY | H8_SYSCR_STS4); /* SYSCR */
+    H8_WRITE8(0xc7, H8_IRQ1); /* IER */
     rcx_standby_stub();
-    H8_IER = 0;
-    RCX_RAMVEC(RCX_VEC_IRQ1) = (u16)(unsigned)rcx_irq_ignore;
-    H8_SYSCR &= (u8)~H8_SYSCR_SSBY;
+    H8_WRITE8(0xc7, 0);
+    H8_BCLR(7, 0xc4);      /* SYSCR.SSBY (H8_SYSCR_SSBY) */
     drv_tick_start(0);     /* whether standby kept the timers is not known: set everything up again */
     wait_onoff_released(); /* the press that woke the brick is not a button event */
     drv_outputs_on();
-    sci_start(0);
-    drv_buttons_resync();
     drv_tick_start(1);
     h8_irq_enable();
 }
@@ -157,8 +148,7 @@ void hal_power_off(struct rcx *b)
 void hal_enter_rom(struct rcx *b)
 {
     (void)b;
-    h8_irq_disable();
-    H8_IER = 0;
+    h8_irq_disable();      /* IER is 0 already: IRQ1 is only enabled in standby */
     drv_outputs_off(0);
     TMR0_TCNT = 1;
     __asm__ __volatile__("jmp\t@@0:8");

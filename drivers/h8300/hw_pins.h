@@ -8,5 +8,7 @@
 #define HW_SCL_LO() H8_BCLR(5, 0xbb)
 #define HW_SDA_HI() H8_BSET(6, 0xbb)
 #define HW_SDA_LO() H8_BCLR(6, 0xbb)
+/* SDA = bit 7 of the byte variable v, and v shifted left by one: the bit goes through the carry. */
+#define HW_SDA_MSB(v) __asm__ __volatile__("shll.b\t%X0\n\tbst\t#6,@0xbb:8" : "+r"(v) : : "memory", "cc")
 
 #endif

@@ -1,6 +1,6 @@
 /*
- * OpenRCX on the brick: start-up, the main loop, and the two interrupts that keep time (rcx-hardware.md 3.2-3.5,
- * 3.9). Interrupt handlers only drive the motor latch, switch sensor power around the A/D scan and store results;
+ * OpenRCX on the brick: start-up, the main loop, and the interrupt that keeps time (rcx-hardware.md 3.2-3.5,
+ * 3.9). The interrupt only drives the motor latch, switches sensor power around the A/D scan and stores results;
  * the main loop feeds everything to the runtime (src/runtime.h), which must never run inside an interrupt.
  */
 #include "runtime.h"
@@ -11,6 +11,7 @@
 #define RUN_BUDGET 8
 
 #define AD_SLOTS 4 /* scans the main loop may fall behind before samples are lost */
+#define AD_SLOT 8  /* bytes of a scan: ad_done and ad_seen count in these, so that they are offsets in ad_slot */
 
 /* Milliseconds handled per main-loop pass, and the backlog at which time is given up: if the per-millisecond work
  * ever takes longer than a millisecond, byte codes and IR packets still get their turn and the clock runs slow,
@@ -20,47 +21,57 @@
 
 static struct rcx_brick brick;
 
-/* Shared with interrupt handlers: on-chip RAM, where the handlers reach them in fewer states. */
-static volatile u16 ms_ticks RCX_ONCHIP;             /* counted by the tick interrupt */
-static volatile u8 ad_done RCX_ONCHIP;               /* scans completed by the A/D interrupt */
-struct scan {
-    u16 raw[4]; /* inputs 0-2 and the battery, as the A/D data registers hold them (raw10 << 6) */
-};
-static volatile struct scan ad_slot[AD_SLOTS] RCX_ONCHIP; /* the last scans */
+/* Shared with the interrupt: on-chip RAM, where it reaches them in fewer states; bytes in the page that 8-bit
+ * addresses reach. */
+static volatile u16 ms_ticks RCX_ONCHIP;         /* counted by the tick interrupt */
+static volatile u8 ad_done RCX_EIGHT;            /* scans completed, times AD_SLOT (modulo 256) */
+/* The last scans: ADDRA-ADDRD (inputs 2, 1, 0 and the battery) as the registers hold them (raw10 << 6). */
+static volatile u16 ad_slot[AD_SLOTS][AD_SLOT / 2] RCX_ONCHIP;
 struct hw_motors drv_motors RCX_ONCHIP;
-u8 drv_sensor_power RCX_ONCHIP;
+u8 drv_sensor_power RCX_EIGHT;
 
-static struct hw_debounce buttons;
-static u8 ad_seen;
-static u16 battery_sum;
-static u8 battery_count;
+/* The main loop's own: on-chip too, external RAM is left to the program memory. */
+static struct hw_debounce buttons RCX_EIGHT;
+static u8 ad_seen RCX_EIGHT;                     /* scans fed to the runtime, times AD_SLOT */
+static u8 battery_count RCX_EIGHT;
+static u16 battery_sum RCX_ONCHIP;
 
-void rcx_frt_isr(void);
-void rcx_adi_isr(void);
+void rcx_timer_isr(void);
 int main(void);
 
 /* The results of the scan that just ended, as the next sample of every input. */
 static void ad_store(void)
 {
-    volatile struct scan *s = &ad_slot[ad_done & (AD_SLOTS - 1)];
+    volatile u16 *s = (volatile u16 *)((volatile u8 *)ad_slot + (ad_done & (AD_SLOTS * AD_SLOT - 1)));
 
-    s->raw[0] = AD_ADDR(hw_ad_channel(0));
-    s->raw[1] = AD_ADDR(hw_ad_channel(1));
-    s->raw[2] = AD_ADDR(hw_ad_channel(2));
-    s->raw[3] = AD_ADDR(HW_AD_BATTERY);
-    ad_done++;
+    *s++ = AD_ADDR(0); /* unrolled: this runs in the tick interrupt */
+    *s++ = AD_ADDR(1);
+    *s++ = AD_ADDR(2);
+    *s = AD_ADDR(3);
+    ad_done += AD_SLOT;
 }
 
 /*
+ * The FRT compare match A (the tick) and the end of an A/D scan share this handler; each entry serves one of them,
+ * and the CPU comes back at once for the other if it is pending too.
+ *
  * Every millisecond the motor pattern moves on and the A/D scans AN0-AN3 afresh (66 µs). With an active sensor
  * (light, rotation) its power is off for the scan, and the A/D interrupt takes the results and powers it again.
  * With passive inputs only, no interrupt is needed: the scan started a millisecond ago is read here.
  */
-void rcx_frt_isr(void)
+void rcx_timer_isr(void)
 {
     u8 power = drv_sensor_power;
 
-    FRT_TCSR &= (u8)~FRT_TCSR_OCFA; /* read as 1, written 0: acknowledged */
+    if (!((u8)~AD_ADCSR & (AD_ADF | AD_ADIE))) { /* both set */
+        /* About 70 µs after the tick, with active sensors: the scan stopped before it starts over, the sensors
+         * powered. */
+        AD_ADCSR = 0; /* ADF read as 1 above and written 0; ADST off */
+        ad_store();
+        P6DR |= power;
+        return;
+    }
+    H8_BCLR(3, 0x91); /* TCSR.OCFA (FRT_TCSR_OCFA) read as 1, written 0: acknowledged */
     ms_ticks++;
     MOTOR_LATCH = hw_motor_step(&drv_motors);
     P6DR &= (u8)~P6_SENSORS; /* and so it stays for inputs that no longer want power */
@@ -71,21 +82,21 @@ void rcx_frt_isr(void)
     AD_ADCSR = power ? AD_SCAN_AN0_AN3 | AD_ADIE : AD_SCAN_AN0_AN3;
 }
 
-/* About 70 µs after the tick, with active sensors: the scan stopped before it starts over, the sensors powered. */
-void rcx_adi_isr(void)
+static __attribute__((noinline)) u8 buttons_now(void)
 {
-    (void)AD_ADCSR;
-    AD_ADCSR = 0; /* ADF read as 1 and written 0; ADST off */
-    ad_store();
-    P6DR |= drv_sensor_power;
+    return hw_buttons(P4DR, P7PIN);
 }
 
-/* FRT at 500 kHz, cleared on compare match A at 499: 1.000 ms per period (rcx-hardware.md §6). */
+/* FRT at 500 kHz, cleared on compare match A at 499: 1.000 ms per period (rcx-hardware.md §6). The buttons'
+ * present state becomes the debounced one, without edges. */
 void drv_tick_start(u8 irq)
 {
+    buttons.state = buttons_now();
+    buttons.cand = 0;
+    buttons.count = 0;
     FRT_TIER = 0;
     FRT_TCR = FRT_TCR_CLK_DIV32;
-    FRT_TOCR &= (u8)~FRT_TOCR_OCRS; /* FF94 addresses OCRA */
+    H8_BCLR(4, 0x97);               /* TOCR.OCRS (FRT_TOCR_OCRS): FF94 addresses OCRA */
     FRT_OCR = 499;
     FRT_FRC = 0;
     (void)FRT_TCSR;                 /* a flag is only cleared by writing 0 after reading it as 1 */
@@ -99,36 +110,38 @@ void drv_wait_ms(u8 ms)
 {
     while (ms) {
         if (FRT_TCSR & FRT_TCSR_OCFA) {
-            FRT_TCSR &= (u8)~FRT_TCSR_OCFA;
+            H8_BCLR(3, 0x91); /* TCSR.OCFA */
             ms--;
         }
     }
 }
 
-void drv_buttons_resync(void)
-{
-    buttons.state = hw_buttons(P4DR, P7PIN);
-    buttons.cand = 0;
-    buttons.count = 0;
-}
-
 /* The scans completed since the last call, oldest first, as one sample per input per millisecond. */
 static void feed_samples(void)
 {
-    struct scan s;
+    static u16 s[4] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
+    u16 *p;
     u8 i;
 
     while (ad_seen != ad_done) {
-        if ((u8)(ad_done - ad_seen) >= AD_SLOTS)
-            ad_seen = (u8)(ad_done - (AD_SLOTS - 1)); /* the oldest slot may be rewritten any moment: skipped */
+        const volatile u16 *slot;
+
+        if ((u8)(ad_done - ad_seen) >= AD_SLOTS * AD_SLOT) /* the oldest slot may be rewritten any moment: */
+            ad_seen = (u8)(ad_done - (AD_SLOTS - 1) * AD_SLOT); /* skipped */
+        slot = (const volatile u16 *)((const volatile u8 *)ad_slot + (ad_seen & (AD_SLOTS * AD_SLOT - 1)));
+        p = s;
+        i = 4;
         h8_irq_disable();
-        s = *(struct scan *)&ad_slot[ad_seen & (AD_SLOTS - 1)];
+        do
+            *p++ = *slot++;
+        while (--i);
         h8_irq_enable();
-        ad_seen++;
+        ad_seen += AD_SLOT;
+        p = &s[hw_ad_channel(0)];
         for (i = 0; i < 3; i++)
-            rt_sensor_sample(&brick, i, hw_ad_raw10(s.raw[i]));
+            rt_sensor_sample(&brick, i, hw_ad_raw10(*p--));
         /* The battery is averaged over 64 ms: steadier, and one conversion to millivolts instead of 64. */
-        battery_sum += hw_ad_raw10(s.raw[3]);
+        battery_sum += hw_ad_raw10(s[HW_AD_BATTERY]);
         if (++battery_count == 64) {
             rt_battery(&brick, hw_battery_mv(battery_sum >> 6));
             battery_sum = 0;
@@ -137,13 +150,18 @@ static void feed_samples(void)
     }
 }
 
-static void poll_buttons(void)
+/* One millisecond of the runtime: the samples, the buttons, then the clock. */
+static __attribute__((noinline)) void millisecond(void)
 {
-    u8 changed = hw_debounce(&buttons, hw_buttons(P4DR, P7PIN)), i;
+    u8 changed, state, i;
 
-    for (i = 0; changed; i++, changed >>= 1)
+    feed_samples();
+    changed = hw_debounce(&buttons, buttons_now());
+    state = buttons.state;
+    for (i = 0; changed; i++, changed >>= 1, state >>= 1)
         if (changed & 1)
-            rt_button(&brick, i, (u8)((buttons.state >> i) & 1));
+            rt_button(&brick, i, (u8)(state & 1));
+    rt_tick(&brick);
 }
 
 int main(void)
@@ -155,12 +173,10 @@ int main(void)
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
     H8_SYSCR &= (u8)~H8_SYSCR_SSBY; /* the ROM leaves it set: SLEEP in the idle loop must be a light sleep */
     P4DR = 0x01;                    /* IR short range until the IR layer says otherwise */
-    RCX_RAMVEC(RCX_VEC_OCIA) = (u16)(unsigned)rcx_frt_irq;
-    RCX_RAMVEC(RCX_VEC_ADI) = (u16)(unsigned)rcx_adi_irq;
+    RCX_RAMVEC(RCX_VEC_OCIA) = (u16)(unsigned)rcx_timer_irq;
+    RCX_RAMVEC(RCX_VEC_ADI) = (u16)(unsigned)rcx_timer_irq;
     drv_outputs_on();
-    sci_start(0);
     rt_init(&brick, (u16)(unsigned)brick.vm.arena);
-    drv_buttons_resync();
     drv_tick_start(1);
     seen = ms_ticks;
     h8_irq_enable();
@@ -172,9 +188,7 @@ int main(void)
             seen = (u16)(ms_ticks - TICKS_PER_PASS);
         for (i = 0; i < TICKS_PER_PASS && seen != ms_ticks; i++) {
             seen++;
-            feed_samples();
-            poll_buttons();
-            rt_tick(&brick);
+            millisecond();
         }
         /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. */
         if (!rt_run(&brick, RUN_BUDGET) && seen == ms_ticks)

@@ -11,37 +11,34 @@
 
 #define TX_SIZE 64 /* a power of two: a whole short reply; longer ones wait in hal_ir_send for room */
 
-static struct hw_rx rx RCX_ONCHIP; /* on-chip: the receive interrupts come 240 times a second */
-static volatile u8 tx_head, tx_tail, tx_active;
-static volatile u8 tx_buf[TX_SIZE]; /* volatile: filled before the head moves, read by the interrupt */
-static u8 mode_now;
+/* On-chip: the interrupts come 240 times a second; the indexes in the page of 8-bit addresses. */
+static struct hw_rx rx RCX_ONCHIP;
+static volatile u8 tx_head RCX_EIGHT, tx_tail RCX_EIGHT, tx_active RCX_EIGHT;
+static volatile u8 tx_buf[TX_SIZE] RCX_ONCHIP; /* volatile: filled before the head moves, read by the interrupt */
+static u8 mode_now RCX_EIGHT;
 
-void rcx_rxi_isr(void);
-void rcx_eri_isr(void);
-void rcx_txi_isr(void);
-void rcx_tei_isr(void);
-
-void rcx_rxi_isr(void)
+/*
+ * All four SCI interrupts. A received byte comes first; a parity, framing or overrun error passes it on marked,
+ * so that the IR layer drops its packet. Otherwise the transmitter: with TIE set, the transmit data register is
+ * empty (end of transmission implies it too); with TIE clear, only the end of transmission can have called.
+ * Each entry serves one cause; the CPU comes back at once for another that is pending.
+ */
+void rcx_sci_isr(void)
 {
-    u8 byte = SCI_RDR;
+    u8 ssr = SCI_SSR, t;
 
-    SCI_SSR &= (u8)~SCI_SSR_RDRF;
-    hw_rx_put(&rx, byte, 0);
-}
-
-/* Parity, framing or overrun error: the byte is passed on marked, so that the IR layer drops its packet. */
-void rcx_eri_isr(void)
-{
-    u8 byte = SCI_RDR;
-
-    SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
-    hw_rx_put(&rx, byte, 1);
-}
-
-void rcx_txi_isr(void)
-{
-    u8 t = tx_tail;
-
+    if ((u8)(ssr << 1) >= 0x10) { /* any of RDRF, ORER, FER and PER: bits 6-3, shifted up to 7-4 */
+        t = SCI_RDR;
+        SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
+        hw_rx_put(&rx, t, (u8)((ssr & SCI_SSR_ERRORS) != 0));
+        return;
+    }
+    if (!(SCI_SCR & SCI_SCR_TIE)) { /* transmission ended */
+        H8_BCLR(2, 0xda); /* SCR.TEIE */
+        tx_active = 0;
+        return;
+    }
+    t = tx_tail;
     if (t == tx_head) { /* all handed over: wait for the last one to leave */
         SCI_SCR = (u8)((SCI_SCR & ~SCI_SCR_TIE) | SCI_SCR_TEIE);
         return;
@@ -49,35 +46,29 @@ void rcx_txi_isr(void)
     SCI_TDR = tx_buf[t & (TX_SIZE - 1)];
     tx_tail = (u8)(t + 1);
     tx_active = 1; /* set here too, so an end-of-transmission interrupt left over from before cannot clear it */
-    SCI_SSR &= (u8)~SCI_SSR_TDRE;
-}
-
-void rcx_tei_isr(void)
-{
-    SCI_SCR &= (u8)~SCI_SCR_TEIE;
-    tx_active = 0;
+    H8_BCLR(7, 0xdc); /* SSR.TDRE: read as 1 and written 0 */
 }
 
 void sci_start(u8 mode)
 {
-    struct hw_carrier c;
     u16 i;
+    u8 tcr;
 
     SCI_SCR = 0;
     SCI_SMR = SCI_SMR_8O1; /* async: CKE stays 00, otherwise SCK would drive P5.2, the RAM power-save line */
     SCI_BRR = hw_sci_brr(mode);
-    hw_carrier(mode, &c);
+    /* TMR1's TCR, TCSR, TCORA and TCORB are consecutive, in the order of struct hw_carrier: the settings go
+     * straight in. The timer then starts again from 0 (TxD idles high meanwhile: the LED stays dark). */
+    hw_carrier(mode, (struct hw_carrier *)(unsigned)0xFFD0);
+    tcr = TMR1_TCR;
     TMR1_TCR = 0;
-    TMR1_TCORA = c.tcora;
-    TMR1_TCORB = c.tcorb;
-    TMR1_TCSR = c.tcsr;
     TMR1_TCNT = 0;
-    H8_STCR &= (u8)~0x02; /* ICKS1 = 0: TMR1 counts φ/8 */
-    TMR1_TCR = c.tcr;     /* the carrier runs all the time; the LED only lights while TxD is low */
-    RCX_RAMVEC(RCX_VEC_ERI) = (u16)(unsigned)rcx_eri_irq;
-    RCX_RAMVEC(RCX_VEC_RXI) = (u16)(unsigned)rcx_rxi_irq;
-    RCX_RAMVEC(RCX_VEC_TXI) = (u16)(unsigned)rcx_txi_irq;
-    RCX_RAMVEC(RCX_VEC_TEI) = (u16)(unsigned)rcx_tei_irq;
+    H8_BCLR(1, 0xc3);     /* STCR.ICKS1 = 0: TMR1 counts φ/8 */
+    TMR1_TCR = tcr;       /* the carrier runs all the time; the LED only lights while TxD is low */
+    RCX_RAMVEC(RCX_VEC_ERI) = (u16)(unsigned)rcx_sci_irq;
+    RCX_RAMVEC(RCX_VEC_RXI) = (u16)(unsigned)rcx_sci_irq;
+    RCX_RAMVEC(RCX_VEC_TXI) = (u16)(unsigned)rcx_sci_irq;
+    RCX_RAMVEC(RCX_VEC_TEI) = (u16)(unsigned)rcx_sci_irq;
     SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
     for (i = 0; i < 300; i++) /* one bit time (417 µs) with the new rate before enabling, as the SCI requires */
         __asm__ __volatile__("");
@@ -103,17 +94,20 @@ u8 hal_ir_busy(struct rcx *b)
 
 void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
 {
+    (void)b;
     mode &= HAL_IR_4800 | HAL_IR_76KHZ | HAL_IR_DUTY25;
     if (mode != mode_now) {
-        while (hal_ir_busy(b))
+        while (hal_ir_busy(0))
             ;
         sci_start(mode);
     }
     while (len--) {
-        while ((u8)(tx_head - tx_tail) >= TX_SIZE)
+        u8 h = tx_head;
+
+        while ((u8)(h - tx_tail) >= TX_SIZE)
             ; /* the transmit interrupt makes room */
-        tx_buf[tx_head & (TX_SIZE - 1)] = *data++;
-        tx_head++;
+        tx_buf[h & (TX_SIZE - 1)] = *data++;
+        tx_head = (u8)(h + 1);
         H8_BSET(7, 0xda); /* SCR.TIE: one instruction, as the handlers change SCR too */
     }
 }
@@ -136,7 +130,8 @@ void sci_service(void)
 
 void sci_drain(struct rcx_brick *k)
 {
-    u8 byte, got;
+    static u8 byte RCX_EIGHT;
+    u8 got;
 
     while ((got = hw_rx_get(&rx, &byte)) != 0)
         rt_ir_byte(k, byte, (u8)(got == 2));

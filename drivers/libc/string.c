@@ -1,7 +1,9 @@
 /*
  * memcpy, memmove, memset and memcmp for the freestanding firmware: the portable code calls them and gcc emits
  * calls to memcpy/memset for struct copies. Byte loops: small, and the brick copies little (downloads, compaction).
- * The host tests compile this same file with RCX_LIBC_NAME renaming the functions.
+ * The brick links the same functions in assembler (string.s, half the size); this C is their reference: the host
+ * tests compile it with RCX_LIBC_NAME renaming the functions (tests/unit/test_libc.c), and
+ * tests/drivers/test_h8image.c holds the image's against the host's.
  */
 #include <stddef.h>
 

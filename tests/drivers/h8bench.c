@@ -136,10 +136,10 @@ int main(int argc, char **argv)
     samples /= 100;
     /* No active sensor (the benchmark has none): the tick takes the finished scan itself (ADF set), no A/D
      * interrupt. An active sensor adds the A/D interrupt. */
-    h.mem[0xFFE8] = 0x80;
-    tick_irq = timed("_rcx_frt_irq", 0, 0) + IRQ_ENTRY;
-    h.mem[0xFFE8] = 0x80;
-    adi_irq = timed("_rcx_adi_irq", 0, 0) + IRQ_ENTRY;
+    h.mem[0xFFE8] = 0x80; /* ADF */
+    tick_irq = timed("_rcx_timer_irq", 0, 0) + IRQ_ENTRY;
+    h.mem[0xFFE8] = 0xC0; /* ADF, ADIE: the same entry serves the end of the scan */
+    adi_irq = timed("_rcx_timer_irq", 0, 0) + IRQ_ENTRY;
     per_ms = tick_irq + tick + samples;
 
     per_code = (double)run / RUNS;

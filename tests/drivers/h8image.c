@@ -56,9 +56,14 @@ int h8_image_load(struct h8 *h, const char *image, const char *nm)
     }
     memset(h->mem + lo, 0, (size_t)(hi - lo));
     lo = h8_sym("_rcx_onchip_start");
-    hi = h8_sym("_rcx_onchip_end");
+    hi = h8_sym("_rcx_onchip_top"); /* crt0.s clears on-chip RAM up to the top, the .eight variables included */
+    if (hi < 0)
+        hi = h8_sym("_rcx_onchip_end");
     if (lo >= 0 && hi >= lo)
         memset(h->mem + lo, 0, (size_t)(hi - lo));
+    hi = h8_sym("_rcx_stack_top"); /* and starts the stack there, below the .eight variables */
+    if (hi > 0)
+        h->r[7] = (uint16_t)hi;
     return 0;
 }
 

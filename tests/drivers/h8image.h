@@ -7,7 +7,7 @@
 #define H8_SCRATCH 0xF800 /* spare RAM for arguments and results: not used by the image (the motor latch area) */
 
 /* Load `image`.srec and the symbols of `image` (COFF) through the `nm` tool; clear .bss and the on-chip variables
- * as crt0.s does. 0 on success; on failure a message is printed. */
+ * and set the stack pointer as crt0.s does. 0 on success; on failure a message is printed. */
 int h8_image_load(struct h8 *h, const char *image, const char *nm);
 /* The address of a symbol (C name with its leading underscore), -1 if absent. */
 long h8_sym(const char *name);

@@ -8,5 +8,6 @@ void pins_set(int line, int level); /* line 0 = SCL, 1 = SDA */
 #define HW_SCL_LO() pins_set(0, 0)
 #define HW_SDA_HI() pins_set(1, 1)
 #define HW_SDA_LO() pins_set(1, 0)
+#define HW_SDA_MSB(v) (pins_set(1, (v) >> 7), (v) = (u8)((v) << 1)) /* SDA = bit 7 of v, v shifted left */
 
 #endif

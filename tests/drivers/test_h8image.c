@@ -165,6 +165,239 @@ static void lcd_frame_as_compiled(void **state)
     assert_memory_equal(h.mem + H8_SCRATCH + 0x20, frame, sizeof frame);
 }
 
+/* The memory functions of drivers/libc/string.s against the host's: every length up to 40 at every alignment of
+ * both buffers, memmove in both directions of overlap. */
+static void memory_functions_as_linked(void **state)
+{
+    uint8_t ref[0x100];
+    const uint16_t base = H8_SCRATCH;
+    (void)state;
+    for (unsigned n = 0; n <= 40; n++)
+        for (unsigned from = 0; from < 4; from++)
+            for (unsigned to = 0; to < 48; to += (to < 8 ? 1 : 13)) {
+                for (unsigned i = 0; i < sizeof ref; i++)
+                    h.mem[base + i] = ref[i] = (uint8_t)rnd();
+                /* memcpy: separate regions */
+                assert_int_equal((u16)h8_run(&h, "_memcpy", base + 0x80 + to, base + from, n, NULL, 0),
+                                 base + 0x80 + to);
+                memcpy(ref + 0x80 + to, ref + from, n);
+                assert_memory_equal(h.mem + base, ref, sizeof ref);
+                /* memmove: overlapping, the destination above and below the source */
+                assert_int_equal((u16)h8_run(&h, "_memmove", base + 0x10 + to, base + 0x10 + from, n, NULL, 0),
+                                 base + 0x10 + to);
+                memmove(ref + 0x10 + to, ref + 0x10 + from, n);
+                assert_memory_equal(h.mem + base, ref, sizeof ref);
+                assert_int_equal((u16)h8_run(&h, "_memmove", base + 0x10 + from, base + 0x10 + to, n, NULL, 0),
+                                 base + 0x10 + from);
+                memmove(ref + 0x10 + from, ref + 0x10 + to, n);
+                assert_memory_equal(h.mem + base, ref, sizeof ref);
+                /* memset, with a value whose high byte must not matter */
+                assert_int_equal((u16)h8_run(&h, "_memset", base + 0x40 + to, 0x3300 | (from * 77), n, NULL, 0),
+                                 base + 0x40 + to);
+                memset(ref + 0x40 + to, (int)(from * 77) & 0xFF, n);
+                assert_memory_equal(h.mem + base, ref, sizeof ref);
+            }
+}
+
+static int sign(long v)
+{
+    return v < 0 ? -1 : v > 0;
+}
+
+static void memcmp_as_linked(void **state)
+{
+    const uint16_t a = H8_SCRATCH, b = H8_SCRATCH + 0x40;
+    (void)state;
+    for (unsigned i = 0; i < 3000; i++) {
+        unsigned n = rnd() % 24, at = n ? rnd() % n : 0;
+        for (unsigned j = 0; j < 24; j++)
+            h.mem[a + j] = h.mem[b + j] = (uint8_t)rnd();
+        if (i % 3)
+            h.mem[b + at] = (uint8_t)(i % 2 ? rnd() : h.mem[a + at] ^ 0x80); /* often one differing byte */
+        assert_int_equal(sign((s16)h8_run(&h, "_memcmp", a, b, n, NULL, 0)), sign(memcmp(h.mem + a, h.mem + b, n)));
+    }
+}
+
+/* Hand-written helpers must keep r4-r6 and the stack pointer as gcc's callers expect. */
+static void helpers_keep_the_callers_registers(void **state)
+{
+    static const char *const helper[] = { "___mulhi3", "___udivhi3", "___umodhi3", "___divhi3", "___modhi3",
+                                          "_memcpy", "_memmove", "_memset", "_memcmp" };
+    (void)state;
+    for (unsigned i = 0; i < sizeof helper / sizeof helper[0]; i++)
+        for (unsigned j = 0; j < 20; j++) {
+            uint16_t sp = h.r[7];
+            h.r[4] = 0x4444;
+            h.r[5] = 0x5555;
+            h.r[6] = 0x6666;
+            if (helper[i][1] == 'm' && helper[i][2] == 'e')
+                h8_run(&h, helper[i], H8_SCRATCH, H8_SCRATCH + 0x40, rnd() % 32, NULL, 0);
+            else
+                h8_run(&h, helper[i], operand(j), operand(j + 3), 0, NULL, 0);
+            assert_int_equal(h.r[4], 0x4444);
+            assert_int_equal(h.r[5], 0x5555);
+            assert_int_equal(h.r[6], 0x6666);
+            assert_int_equal(h.r[7], sp);
+        }
+}
+
+/* ---- The drivers' interrupt handlers (drivers/h8300/main.c, sci.c), their registers as plain memory ---- */
+
+#define SCI_SCR 0xFFDA
+#define SCI_TDR 0xFFDB
+#define SCI_SSR 0xFFDC
+#define SCI_RDR 0xFFDD
+
+static uint16_t var(const char *name)
+{
+    long a = h8_sym(name);
+    if (a < 0)
+        fail_msg("symbol %s not in the image", name);
+    return (uint16_t)a;
+}
+
+static void sci_interrupt_receives_bytes_and_errors(void **state)
+{
+    static const struct { uint8_t ssr, rdr, error; } got[] = {
+        { 0xC4, 0x5A, 0 }, /* TDRE, RDRF, TEND: a byte */
+        { 0xE4, 0x11, 1 }, /* and overrun */
+        { 0x94, 0x22, 1 }, /* framing error */
+        { 0x4C, 0x33, 1 }, /* parity error */
+        { 0x40, 0x44, 0 },
+    };
+    uint16_t rx = var("_rx"); /* struct hw_rx: head, tail, data[32], error[32] */
+    (void)state;
+    h.mem[SCI_SCR] = 0x70; /* TE, RE, RIE */
+    for (unsigned i = 0; i < sizeof got / sizeof got[0]; i++) {
+        h.mem[SCI_SSR] = got[i].ssr;
+        h.mem[SCI_RDR] = got[i].rdr;
+        h8_run(&h, "_rcx_sci_isr", 0, 0, 0, NULL, 0);
+        assert_int_equal(h.mem[rx], i + 1);
+        assert_int_equal(h.mem[rx + 2 + i], got[i].rdr);
+        assert_int_equal(h.mem[rx + 2 + HW_RX_SIZE + i] != 0, got[i].error);
+        assert_int_equal(h.mem[SCI_SSR], got[i].ssr & 0x87); /* RDRF and the error flags cleared */
+        assert_int_equal(h.mem[SCI_SCR], 0x70);
+    }
+}
+
+static void sci_interrupt_transmits_then_waits_for_the_end(void **state)
+{
+    uint16_t buf = var("_tx_buf"), head = var("_tx_head"), tail = var("_tx_tail"), active = var("_tx_active");
+    (void)state;
+    h.mem[buf + 63] = 0xAB; /* two bytes queued across the end of the ring */
+    h.mem[buf] = 0xCD;
+    h.mem[tail] = 63;
+    h.mem[head] = 65;
+    h.mem[active] = 0;
+    h.mem[SCI_SCR] = 0xF0; /* TIE, TE, RE, RIE */
+    h.mem[SCI_SSR] = 0x84; /* TDRE, TEND */
+    h8_run(&h, "_rcx_sci_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[SCI_TDR], 0xAB);
+    assert_int_equal(h.mem[tail], 64);
+    assert_int_equal(h.mem[active], 1);
+    assert_int_equal(h.mem[SCI_SSR], 0x04); /* TDRE cleared */
+    assert_int_equal(h.mem[SCI_SCR], 0xF0);
+    h.mem[SCI_SSR] = 0x80;
+    h8_run(&h, "_rcx_sci_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[SCI_TDR], 0xCD);
+    assert_int_equal(h.mem[tail], 65);
+    assert_int_equal(h.mem[SCI_SSR], 0x00);
+    h.mem[SCI_SSR] = 0x80; /* all handed over: the end of transmission enabled instead */
+    h8_run(&h, "_rcx_sci_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[SCI_TDR], 0xCD);
+    assert_int_equal(h.mem[tail], 65);
+    assert_int_equal(h.mem[SCI_SCR], 0x74);
+    assert_int_equal(h.mem[SCI_SSR], 0x80);
+    assert_int_equal(h.mem[active], 1);
+    h.mem[SCI_SSR] = 0x84; /* the last byte has left */
+    h8_run(&h, "_rcx_sci_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[SCI_SCR], 0x70);
+    assert_int_equal(h.mem[active], 0);
+}
+
+#define FRT_TCSR 0xFF91
+#define P6DR 0xFFBB
+#define AD_ADCSR 0xFFE8
+
+/* The A/D data registers ADDRA-ADDRD with results of a scan. */
+static void scan_results(uint16_t base)
+{
+    for (unsigned i = 0; i < 4; i++)
+        h8_write16(&h, (uint16_t)(0xFFE0 + 2 * i), (uint16_t)((base + 100 * i) << 6));
+}
+
+/* Slot n of the A/D ring holds the scan of scan_results(base) (the registers in their order). */
+static void assert_slot(unsigned n, uint16_t base)
+{
+    uint16_t slot = (uint16_t)(var("_ad_slot") + 8 * (n & 3));
+    for (unsigned i = 0; i < 4; i++)
+        assert_int_equal(h8_read16(&h, (uint16_t)(slot + 2 * i)), (uint16_t)((base + 100 * i) << 6));
+}
+
+static void timer_interrupt_drives_motors_and_the_scan(void **state)
+{
+    uint16_t ticks = var("_ms_ticks"), done = var("_ad_done"), power = var("_drv_sensor_power");
+    uint16_t level[1] = { 7 };
+    unsigned step; /* what ad_done counts a stored scan as */
+    (void)state;
+    h8_run(&h, "_hw_motor_set", var("_drv_motors"), 0, HAL_MOTOR_FWD, level, 1); /* A forward, full power */
+
+    /* Passive inputs: the tick reads the scan that ran since the last one and starts the next. */
+    scan_results(10);
+    h.mem[FRT_TCSR] = 0x09; /* OCFA, CCLRA */
+    h.mem[AD_ADCSR] = 0xB3; /* ADF, ADST, SCAN, AN0-AN3 */
+    h.mem[P6DR] = 0x6F;
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[FRT_TCSR], 0x01);
+    assert_int_equal(h8_read16(&h, ticks), 1);
+    assert_int_equal(h.mem[0xFF80], 0x80); /* the motor latch */
+    assert_int_equal(h.mem[P6DR], 0x68);   /* no sensor power */
+    step = h.mem[done];
+    assert_true(step != 0);
+    assert_slot(0, 10);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+
+    /* No scan finished: nothing stored. */
+    h.mem[FRT_TCSR] = 0x09;
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h8_read16(&h, ticks), 2);
+    assert_int_equal(h.mem[done], step);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+
+    /* An active sensor on input 1 (P6.2): unpowered for the scan, which ends in an interrupt. */
+    h.mem[power] = 0x04;
+    h.mem[P6DR] = 0x6C;
+    h.mem[FRT_TCSR] = 0x09;
+    h.mem[AD_ADCSR] = 0xB3;
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h8_read16(&h, ticks), 3);
+    assert_int_equal(h.mem[P6DR], 0x68);
+    assert_int_equal(h.mem[done], step); /* the scan of the unpowered millisecond is not used */
+    assert_int_equal(h.mem[AD_ADCSR], 0x73); /* and ADIE */
+    scan_results(20);
+    h.mem[FRT_TCSR] = 0x01;
+    h.mem[AD_ADCSR] = 0xF3; /* the scan ended */
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h8_read16(&h, ticks), 3);
+    assert_int_equal(h.mem[AD_ADCSR], 0x00); /* stopped before it starts over */
+    assert_int_equal(h.mem[done], 2 * step);
+    assert_slot(1, 20);
+    assert_int_equal(h.mem[P6DR], 0x6C); /* powered again */
+
+    /* Both pending: the scan first, then the tick. */
+    scan_results(30);
+    h.mem[FRT_TCSR] = 0x09;
+    h.mem[AD_ADCSR] = 0xF3;
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h8_read16(&h, ticks), 3);
+    assert_int_equal(h.mem[done], 3 * step);
+    assert_slot(2, 30);
+    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    assert_int_equal(h8_read16(&h, ticks), 4);
+    assert_int_equal(h.mem[AD_ADCSR], 0x73);
+    assert_int_equal(h.mem[P6DR], 0x68);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +409,12 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(debounce_as_compiled, load),
         cmocka_unit_test_setup(receive_ring_as_compiled, load),
         cmocka_unit_test_setup(lcd_frame_as_compiled, load),
+        cmocka_unit_test_setup(memory_functions_as_linked, load),
+        cmocka_unit_test_setup(memcmp_as_linked, load),
+        cmocka_unit_test_setup(helpers_keep_the_callers_registers, load),
+        cmocka_unit_test_setup(sci_interrupt_receives_bytes_and_errors, load),
+        cmocka_unit_test_setup(sci_interrupt_transmits_then_waits_for_the_end, load),
+        cmocka_unit_test_setup(timer_interrupt_drives_motors_and_the_scan, load),
     };
     if (argc != 3) {
         fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);

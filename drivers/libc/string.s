@@ -1,0 +1,69 @@
+; memcpy, memmove, memset and memcmp for the freestanding firmware (rcx_string.h): the portable code calls
+; them and gcc emits calls to memcpy/memset for struct copies. Byte loops, in assembler because a C loop
+; needs more registers than gcc's calling convention leaves free and pays for saving them; the brick
+; copies little (downloads, compaction). string.c is the same in C, the reference on the host;
+; tests/drivers/test_h8image.c checks these against the host's.
+;
+; Arguments in r0, r1, r2 (dst or a, src or c or b, n), result in r0; r0-r3 may be clobbered.
+
+	.section .text
+	.global	_memcpy
+	.global	_memmove
+	.global	_memset
+	.global	_memcmp
+
+; Overlapping regions: copied upwards when the destination lies below the source, downwards otherwise.
+; memcpy (no overlap) takes the downward loop.
+_memmove:
+	cmp.w	r1,r0
+	bhi	.Lcopy_down
+	mov.w	r0,@-r7
+	add.w	r1,r2			; r2 = end of the source
+	bra	2f
+1:	mov.b	@r1+,r3l
+	mov.b	r3l,@r0
+	adds	#1,r0
+2:	cmp.w	r2,r1
+	bne	1b
+	mov.w	@r7+,r0
+	rts
+
+_memcpy:
+.Lcopy_down:
+	add.w	r2,r1			; r1, r3: one past the ends
+	mov.w	r0,r3
+	add.w	r2,r3
+	bra	2f
+1:	subs	#1,r1
+	subs	#1,r3
+	mov.b	@r1,r2l
+	mov.b	r2l,@r3
+2:	cmp.w	r0,r3
+	bne	1b
+	rts
+
+_memset:
+	mov.w	r0,r3
+	add.w	r0,r2			; r2 = end
+	bra	2f
+1:	mov.b	r1l,@r3
+	adds	#1,r3
+2:	cmp.w	r2,r3
+	bne	1b
+	rts
+
+; <0, 0 or >0 as the first differing byte (unsigned) of a is below, equal to or above b's.
+_memcmp:
+	add.w	r0,r2			; r2 = end of a
+1:	cmp.w	r2,r0
+	beq	3f
+	mov.b	@r0+,r3l
+	mov.b	@r1+,r3h
+	cmp.b	r3h,r3l
+	beq	1b
+	mov.w	#1,r0
+	bhi	2f			; a's byte above: 1 (mov.w leaves the carry alone)
+	mov.w	#-1,r0
+2:	rts
+3:	sub.w	r0,r0
+	rts
