@@ -1,7 +1,9 @@
 # The limits of the linked image that linker/openrcx.ld cannot check itself: with --relax, ld evaluates the
 # script's ASSERTs on the sizes before relaxation as well, so an image that fits only once relaxed would be
 # refused. The limits are the script's own symbols (_rcx_image_max, _rcx_rom_vars), read back from the image.
-# RAM needs no check here: the .bss section's memory region ends at 0xF000, which ld checks after relaxing.
+# RAM needs no check here: the .bss section's memory region ends at 0xF000, which ld checks after relaxing, as it
+# checks that section .high (the code run at 0xF000) fits in 0xF000-0xFB7F. Checked here: .high is downloaded last,
+# .bss starts where it was loaded (crt0.s copies it away before clearing .bss), and the image's size counts it.
 #
 # Usage: cmake -DNM=<nm> -DIMAGE=<linked image> -P check_link.cmake
 execute_process(COMMAND "${NM}" "${IMAGE}" OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
@@ -21,6 +23,17 @@ symbol_value(_rcx_image_base base)
 symbol_value(_rcx_image_end end)
 symbol_value(_rcx_image_max max)
 symbol_value(_rcx_rom_vars rom_vars)
+symbol_value(_rcx_high_start high_start)
+symbol_value(_rcx_high_end high_end)
+symbol_value(_rcx_high_load high_load)
+symbol_value(_rcx_bss_start bss_start)
+math(EXPR high_size "${high_end} - ${high_start}")
+math(EXPR high_load_end "${high_load} + ${high_size}")
+if(NOT high_start EQUAL 0xF000 OR high_end GREATER 0xFB80 OR NOT high_load_end EQUAL end OR NOT bss_start EQUAL high_load
+   OR high_start MATCHES "[13579]$" OR high_load MATCHES "[13579]$" OR high_end MATCHES "[13579]$")
+    message(FATAL_ERROR "OpenRCX: section .high not laid out as crt0.s copies it (run ${high_start}-${high_end}, "
+                        "load ${high_load}, image end ${end}, .bss ${bss_start})")
+endif()
 math(EXPR image "${end} - ${base}")
 if(image GREATER max)
     message(FATAL_ERROR "OpenRCX: image larger than ${max} bytes (${image})")

@@ -3,7 +3,9 @@
 ;
 ; State at entry (rcx-hardware.md 2.3 and 6): interrupts enabled, SP in on-chip RAM with a return
 ; address into the ROM on top, ROM handlers still in some RAM vectors, IRQ0 enabled. The image was
-; loaded in place, so .data needs no copy; .bss holds garbage and is cleared here.
+; loaded in place, so .data needs no copy. Section .high (linker/openrcx.ld), downloaded last, runs at F000: it is
+; copied there first, as .bss starts where it was loaded; then .bss, which holds garbage, is cleared. Nothing here
+; may call code in .high before the copy.
 
 	.section .start,"x"
 	.global	_start
@@ -32,8 +34,22 @@ _rcx_knock:
 	mov.w	#_rcx_ramvec_end,r2
 	bsr	_rcx_fill
 
-	; Clear .bss, and on-chip RAM from its variables up: the stack and the .eight variables above it. The
-	; linker script aligns all ends to words.
+	; Copy .high to F000 (words: the script aligns its start, end and load address). Each of these writes also
+	; reaches the motor latch, which is zeroed right after: the motors may see a few ms of stray patterns.
+	mov.w	#_rcx_high_load,r0
+	mov.w	#_rcx_high_start,r1
+	mov.w	#_rcx_high_end,r2
+	bra	6f
+5:	mov.w	@r0+,r3
+	mov.w	r3,@r1
+	adds	#2,r1
+6:	cmp.w	r2,r1
+	bne	5b
+	sub.b	r0l,r0l
+	mov.b	r0l,@_rcx_motor_latch:8	; motor latch (FF80) = 0: all outputs float
+
+	; Clear .bss (it starts where .high was loaded), and on-chip RAM from its variables up: the stack and the
+	; .eight variables above it. The linker script aligns all ends to words.
 	sub.w	r1,r1
 	mov.w	#_rcx_bss_start,r0
 	mov.w	#_rcx_bss_end,r2

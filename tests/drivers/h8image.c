@@ -18,11 +18,10 @@ long h8_sym(const char *name)
     return -1;
 }
 
-int h8_image_load(struct h8 *h, const char *image, const char *nm)
+int h8_image_read(struct h8 *h, const char *image, const char *nm)
 {
     char line[512], type[8], name[64];
     unsigned long addr;
-    long lo, hi;
     FILE *f;
 
     h8_reset(h);
@@ -48,23 +47,39 @@ int h8_image_load(struct h8 *h, const char *image, const char *nm)
         fprintf(stderr, "%s %s failed\n", nm, image);
         return -1;
     }
-    lo = h8_sym("_rcx_bss_start");
-    hi = h8_sym("_rcx_bss_end");
-    if (lo < 0 || hi < lo) {
-        fprintf(stderr, "%s: no .bss symbols\n", image);
+    return 0;
+}
+
+int h8_image_start(struct h8 *h)
+{
+    long entry = h8_sym("_start"), main_at = h8_sym("_main"), top = h8_sym("_rcx_stack_top");
+    unsigned long n;
+
+    if (entry < 0 || main_at < 0 || top < 0) {
+        fprintf(stderr, "image without _start, _main or _rcx_stack_top\n");
         return -1;
     }
-    memset(h->mem + lo, 0, (size_t)(hi - lo));
-    lo = h8_sym("_rcx_onchip_start");
-    hi = h8_sym("_rcx_onchip_top"); /* crt0.s clears on-chip RAM up to the top, the .eight variables included */
-    if (hi < 0)
-        hi = h8_sym("_rcx_onchip_end");
-    if (lo >= 0 && hi >= lo)
-        memset(h->mem + lo, 0, (size_t)(hi - lo));
-    hi = h8_sym("_rcx_stack_top"); /* and starts the stack there, below the .eight variables */
-    if (hi > 0)
-        h->r[7] = (uint16_t)hi;
+    /* As the ROM calls it: with jsr, on the ROM's stack in on-chip RAM. */
+    h->r[7] = 0xFF7C;
+    h8_write16(h, h->r[7], 0x0000);
+    h->pc = (uint16_t)entry;
+    for (n = 0; h->pc != (uint16_t)main_at; n++) {
+        if (n == 1000000ul || h->pc < 0x8000) {
+            fprintf(stderr, "crt0: main not reached (pc %04X)\n", h->pc);
+            return -1;
+        }
+        if (h8_step(h)) {
+            fprintf(stderr, "crt0: %s\n", h->error);
+            return -1;
+        }
+    }
+    h->r[7] = (uint16_t)top; /* as when main was called, less crt0's return address */
     return 0;
+}
+
+int h8_image_load(struct h8 *h, const char *image, const char *nm)
+{
+    return h8_image_read(h, image, nm) || h8_image_start(h) ? -1 : 0;
 }
 
 const char *h8_func_at(uint16_t pc)

@@ -4,11 +4,19 @@
 
 #include "h8sim.h"
 
-#define H8_SCRATCH 0xF800 /* spare RAM for arguments and results: not used by the image (the motor latch area) */
+/* Spare RAM for arguments and results, 512 bytes: not used by the image (FB80-FD7F, reserved on the brick; the
+ * image's section .high runs in F000-FB7F). */
+#define H8_SCRATCH 0xFB80
 
-/* Load `image`.srec and the symbols of `image` (COFF) through the `nm` tool; clear .bss and the on-chip variables
- * and set the stack pointer as crt0.s does. 0 on success; on failure a message is printed. */
+/* Load `image`.srec and the symbols of `image` (COFF) through the `nm` tool, then start it: h8_image_start().
+ * 0 on success; on failure a message is printed. */
 int h8_image_load(struct h8 *h, const char *image, const char *nm);
+/* Only the loading: the bytes of `image`.srec at their load addresses, as the ROM leaves them, and the symbols. */
+int h8_image_read(struct h8 *h, const char *image, const char *nm);
+/* The image's own start-up code (crt0.s), run from the entry as the ROM calls it until it calls main: it copies
+ * section .high to F000, zeroes the motor latch, clears .bss and the on-chip variables. The stack pointer is then
+ * left at the top of the stack (_rcx_stack_top), for h8_call(). 0 on success; on failure a message is printed. */
+int h8_image_start(struct h8 *h);
 /* The address of a symbol (C name with its leading underscore), -1 if absent. */
 long h8_sym(const char *name);
 /* The function whose code holds `pc` (the nearest code symbol at or below it), "?" if none. */

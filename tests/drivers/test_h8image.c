@@ -398,9 +398,44 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     assert_int_equal(h.mem[P6DR], 0x68);
 }
 
+/* The start-up code (crt0.s), run from the entry on the bytes as the ROM loads them: section .high, downloaded last,
+ * must be copied to F000 where it runs (the loader puts nothing there), the motor latch zeroed after that copy (on
+ * the brick every write to F000-FB7F reaches it), and .bss, which starts where .high was loaded, cleared. */
+static void startup_copies_code_to_f000(void **state)
+{
+    static uint8_t loaded[65536];
+    long start, end, load, bss, bss_end, image_end, i;
+    (void)state;
+    assert_int_equal(h8_image_read(&h, image_path, nm_path), 0);
+    start = h8_sym("_rcx_high_start");
+    end = h8_sym("_rcx_high_end");
+    load = h8_sym("_rcx_high_load");
+    bss = h8_sym("_rcx_bss_start");
+    bss_end = h8_sym("_rcx_bss_end");
+    image_end = h8_sym("_rcx_image_end");
+    assert_true(start == 0xF000 && end <= 0xFB80 && load >= 0x8000 && bss_end > bss);
+    assert_true(end - start >= 1024); /* a real part of the code runs there */
+    assert_int_equal(load + (end - start), image_end);
+    assert_int_equal(bss, load);
+    assert_true(h8_func_at((uint16_t)start)[0] != '?'); /* code, with its symbols */
+    for (i = start; i < end; i++)
+        assert_int_equal(h.mem[i], 0); /* downloaded at its load address only */
+    memcpy(loaded, h.mem, sizeof loaded);
+    h.mem[0xFF80] = 0xC3;                                        /* what the copy left in the latch */
+    memset(h.mem + image_end, 0xA5, (size_t)(bss_end - image_end)); /* RAM holds garbage */
+    assert_int_equal(h8_image_start(&h), 0);
+    assert_memory_equal(h.mem + start, loaded + load, (size_t)(end - start));
+    assert_int_equal(h.mem[0xFF80], 0);
+    for (i = bss; i < bss_end; i++)
+        assert_int_equal(h.mem[i], 0);
+    assert_int_equal(h.pc, h8_sym("_main"));
+    /* Functions there then run from F000 (h8bench, tests/bench/firmware.sh, calls rt_init and vm_direct there). */
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(startup_copies_code_to_f000),
         cmocka_unit_test_setup(arithmetic_helpers_as_linked, load),
         cmocka_unit_test_setup(battery_conversion_as_compiled, load),
         cmocka_unit_test_setup(tones_as_compiled, load),

@@ -1,6 +1,8 @@
 #!/bin/sh
 # The image's budgets: at most 16 384 bytes downloaded, at least 12 000 bytes of program memory on an empty brick
-# (the arena the link left, symbol _rcx_arena_size), entry at 0x8000.
+# (the arena the link left, symbol _rcx_arena_size), entry at 0x8000. The image counts the bytes of section .high as
+# downloaded (after the rest); they run at 0xF000-0xFB7F once crt0.s has copied them there, and .bss must start where
+# they were loaded (that RAM is the arena's): checked when the listing has .high's symbols.
 #
 # Usage: check_budget.sh image <nm> <image>   checks the image's symbols
 #        check_budget.sh scan <nm listing>    checks an `nm` listing
@@ -20,6 +22,14 @@ scan() {
             if (sym["_start"] != 32768) { print "entry is not 0x8000"; exit 1 }
             if (image > 16384) { print "image over budget"; exit 1 }
             if (free < 12000) { print "too little program memory"; exit 1 }
+            if (seen["_rcx_high_start"]) {
+                high = sym["_rcx_high_end"] - sym["_rcx_high_start"]
+                printf "code run at 0x%04X: %d bytes, loaded at 0x%04X\n", sym["_rcx_high_start"], high, sym["_rcx_high_load"]
+                if (!seen["_rcx_high_load"] || !seen["_rcx_bss_start"] || sym["_rcx_high_start"] != 61440 ||
+                    high < 0 || sym["_rcx_high_end"] > 64384 || sym["_rcx_high_load"] + high != sym["_rcx_image_end"] ||
+                    sym["_rcx_bss_start"] != sym["_rcx_high_load"]) {
+                    print "relocated code not laid out as crt0.s copies it"; exit 1 }
+            }
         }' "$1"
 }
 case "$1" in

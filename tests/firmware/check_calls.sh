@@ -3,6 +3,8 @@
 # single hand-back `jmp @@0:8` through the reset vector (GoIntoBootMode, rcx-hardware.md 2.4), which must exist.
 # Memory-indirect jumps and calls (@@aa:8) go through the ROM's vector table, so any other one is a ROM call.
 #
+# The code is 0x8000 up to _rcx_code_end and section .high, which runs at 0xF000 (_rcx_high_start-_rcx_high_end).
+#
 # Usage: check_calls.sh image <objdump> <nm> <image>   disassembles the code of the image (data left out)
 #        check_calls.sh scan <disassembly file>        checks an `objdump -d` listing
 set -e
@@ -31,14 +33,17 @@ scan)
 image)
     objdump="$2" nm="$3" image="$4"
     [ -f "$image" ] || { echo "no firmware image $image (make firmware)"; exit 1; }
-    eval "$("$nm" "$image" | awk '$3 == "_start" || $3 == "_rcx_knock" || $3 == "_rcx_code_end" {
+    eval "$("$nm" "$image" | awk '$3 == "_start" || $3 == "_rcx_knock" || $3 == "_rcx_code_end" ||
+        $3 == "_rcx_high_start" || $3 == "_rcx_high_end" {
         sub(/^_/, "", $3); print $3 "=0x" substr($1, length($1) - 3) }')"
     # The knock string sits among the instructions: disassemble around it, so that it is not decoded as code.
     after=$(printf '0x%x' $(( (rcx_knock + 27 + 1) / 2 * 2 )))
     tmp="${TMPDIR:-/tmp}/check_calls.$$"
     trap 'rm -f "$tmp"' EXIT
     { "$objdump" -d --start-address="$start" --stop-address="$rcx_knock" "$image"
-      "$objdump" -d --start-address="$after" --stop-address="$rcx_code_end" "$image"; } > "$tmp"
+      "$objdump" -d --start-address="$after" --stop-address="$rcx_code_end" "$image"
+      [ -z "$rcx_high_start" ] || [ "$rcx_high_start" = "$rcx_high_end" ] ||
+          "$objdump" -d --start-address="$rcx_high_start" --stop-address="$rcx_high_end" "$image"; } > "$tmp"
     scan "$tmp" ;;
 *)
     echo "usage: $0 image <objdump> <nm> <image> | scan <listing>" >&2; exit 2 ;;

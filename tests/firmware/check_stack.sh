@@ -9,6 +9,9 @@
 # them) and the 8 bytes the CPU and the ROM's trampoline push before a handler runs, must fit between the on-chip
 # variables and 0xFF80. Recursion, or a register call with no candidate, would leave the answer unknown: refused.
 #
+# The code is 0x8000 up to _rcx_code_end and section .high at 0xF000 (_rcx_high_start-_rcx_high_end); the constants
+# follow the first part, up to where .high is loaded (_rcx_high_load).
+#
 # Usage: check_stack.sh image <objdump> <nm> <image>
 #        check_stack.sh scan <disassembly> <stack bytes> [<objdump -s dump of the constants>]
 set -e
@@ -91,12 +94,16 @@ scan)
 image)
     objdump="$2" nm="$3" image="$4"
     [ -f "$image" ] || { echo "no firmware image $image (make firmware)"; exit 1; }
-    eval "$("$nm" "$image" | awk '$3 == "_rcx_code_end" || $3 == "_rcx_image_end" || $3 == "_rcx_onchip_end" ||
+    eval "$("$nm" "$image" | awk '$3 == "_rcx_code_end" || $3 == "_rcx_high_load" || $3 == "_rcx_onchip_end" ||
+        $3 == "_rcx_high_start" || $3 == "_rcx_high_end" ||
         $3 == "_rcx_stack_top" { sub(/^_/, "", $3); print $3 "=0x" substr($1, length($1) - 3) }')"
     tmp="${TMPDIR:-/tmp}/check_stack.$$"
     trap 'rm -f "$tmp" "$tmp.s"' EXIT
-    "$objdump" -d --stop-address="$rcx_code_end" "$image" > "$tmp"
-    "$objdump" -s --start-address="$rcx_code_end" --stop-address="$rcx_image_end" "$image" > "$tmp.s"
+    [ -n "$rcx_high_load" ] || { echo "symbol _rcx_high_load missing from $image"; exit 1; }
+    { "$objdump" -d --stop-address="$rcx_code_end" "$image"
+      [ "$rcx_high_start" = "$rcx_high_end" ] ||
+          "$objdump" -d --start-address="$rcx_high_start" --stop-address="$rcx_high_end" "$image"; } > "$tmp"
+    "$objdump" -s --start-address="$rcx_code_end" --stop-address="$rcx_high_load" "$image" > "$tmp.s"
     scan "$tmp" $(( rcx_stack_top - rcx_onchip_end )) "$tmp.s" ;;
 *)
     echo "usage: $0 image <objdump> <nm> <image> | scan <listing> <bytes> [<dump>]" >&2; exit 2 ;;
