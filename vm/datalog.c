@@ -17,13 +17,12 @@ static void put_entry(struct rcx *b, u16 i, u8 type, u16 value)
 
 void datalog_set(struct rcx *b, u16 entries)
 {
-    u32 need = (u32)entries + 1; /* the spec allocates one extra element for the count */
-
     b->log_size = 0;
     b->log_count = 0;
-    if (need * 3u > mem_free(b))
+    /* The spec allocates one extra element for the count: (entries + 1) x 3 bytes must fit. */
+    if (entries >= mem_free(b) / 3u)
         return; /* no room: no datalog, nothing else disturbed */
-    b->log_size = (u16)need;
+    b->log_size = (u16)(entries + 1);
     b->log_count = 1;
     put_entry(b, 0, 0xFF, 1);
 }
@@ -31,13 +30,7 @@ void datalog_set(struct rcx *b, u16 entries)
 /* Entry type: source kind in bits 5-7 (0 variable, 1 timer, 2 sensor value, 4 watch), index in bits 0-4. */
 static u8 entry_kind(u8 src)
 {
-    switch (src) {
-    case 0: return 0;
-    case 1: return 1;
-    case 9: return 2;
-    case 14: return 4;
-    default: return 0xFF;
-    }
+    return src == 0 ? 0x00 : src == 1 ? 0x20 : src == 9 ? 0x40 : src == 14 ? 0x80 : 0xFF;
 }
 
 void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
@@ -49,7 +42,7 @@ void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
     if (kind == 0xFF || index >= 32 || b->log_count >= b->log_size)
         return;
     value = source_get(b, t, src, index);
-    put_entry(b, b->log_count, (u8)(kind << 5 | index), (u16)value);
+    put_entry(b, b->log_count, (u8)(kind | index), (u16)value);
     b->log_count++;
     put_entry(b, 0, 0xFF, b->log_count);
 }

@@ -37,22 +37,16 @@ u8 mem_resize(struct rcx *b, u8 obj, u16 size)
     u16 old = mem_obj_size(b, obj);
     u16 tail = b->obj_start[obj + 1];
     u16 used = (u16)(CODE_END(b) + LOG_BYTES(b));
-    u16 i;
+    u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: one path for both */
+    u16 *start;
 
-    if (size > old) {
-        u16 grow = (u16)(size - old);
-        if (grow > mem_free(b))
-            return 0;
-        memmove(b->arena + tail + grow, b->arena + tail, (size_t)(used - tail));
-        memset(b->arena + tail, 0, grow);
-        for (i = (u16)(obj + 1); i <= RCX_OBJS; i++)
-            b->obj_start[i] = (u16)(b->obj_start[i] + grow);
-    } else if (size < old) {
-        u16 shrink = (u16)(old - size);
-        memmove(b->arena + tail - shrink, b->arena + tail, (size_t)(used - tail));
-        for (i = (u16)(obj + 1); i <= RCX_OBJS; i++)
-            b->obj_start[i] = (u16)(b->obj_start[i] - shrink);
-    }
+    if (size > old && delta > mem_free(b))
+        return 0;
+    memmove(b->arena + (u16)(tail + delta), b->arena + tail, (size_t)(used - tail));
+    if (size > old)
+        memset(b->arena + tail, 0, delta);
+    for (start = &b->obj_start[obj + 1]; start <= &b->obj_start[RCX_OBJS]; start++)
+        *start = (u16)(*start + delta);
     return 1;
 }
 
