@@ -46,7 +46,7 @@ extern const u8 rcx_opflags[128];
            : (reply) == 26 ? 5 : (reply) == 189 ? 6 : 7) << 5))
 #define rcx_op_avail(op) ((u8)((rcx_opflags[rcx_op_index(op)] >> 3) & 3))
 
-/* Reply length including the reply opcode: 0 none, RCX_REPLY_VAR computed from the operands. */
+/* Reply length including the reply opcode: 0 none, RCX_REPLY_VAR computed from the operands (host only). */
 u8 rcx_op_reply(u8 op);
 
 /* Operand bytes implied by the low three bits of any opcode, known or not (6 and 7 mean 0 and 1). */

@@ -186,8 +186,8 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         return 0;
     default:
         ops_exec(b, NULL, cmd);
-        if (rcx_op_reply(op) == 0)
-            return 0;              /* InternMessage, SendUARTData: no reply */
+        if (op == RCX_OP_MESSAGE || op == RCX_OP_SEND_UART)
+            return 0;              /* the two shared commands with no reply (table column "reply" 0) */
         break;
     }
     return (u8)(1 + n);

@@ -8,13 +8,6 @@ const u8 rcx_opflags[128] = {
 #undef RCX_OP
 };
 
-static const u8 reply_lengths[8] = { 0, 1, 2, 3, 9, 26, 189, RCX_REPLY_VAR };
-
-u8 rcx_op_reply(u8 op)
-{
-    return reply_lengths[rcx_opflags[rcx_op_index(op)] >> 5];
-}
-
 u8 rcx_op_params(u8 op)
 {
     u8 f = rcx_opflags[rcx_op_index(op)];

@@ -10,6 +10,14 @@ const struct rcx_opname rcx_opnames[] = {
 
 const unsigned rcx_opname_count = sizeof rcx_opnames / sizeof rcx_opnames[0];
 
+/* The firmware needs no reply lengths (vm_direct knows its replies); tests and host tools decode them here. */
+static const u8 reply_lengths[8] = { 0, 1, 2, 3, 9, 26, 189, RCX_REPLY_VAR };
+
+u8 rcx_op_reply(u8 op)
+{
+    return reply_lengths[rcx_opflags[rcx_op_index(op)] >> 5];
+}
+
 const struct rcx_opname *rcx_opname_find(u8 op)
 {
     unsigned i;
