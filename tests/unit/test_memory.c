@@ -327,6 +327,32 @@ static void abandoned_download(void **state)
     scene_free(b, &s);
 }
 
+/*
+ * Found by fuzz_download (corpus/download/regress-begin-bad-number): a BeginOfTask refused for its number kept an
+ * unfinished download alive while one refused for memory abandoned it. Any new BeginOfTask/Sub, accepted or not,
+ * ends the unfinished download: its slot is empty and later blocks are answered "not active" (status 6).
+ */
+static void refused_begin_ends_unfinished_download(void **state)
+{
+    static const u8 code[20] = { 0x24, 0x00, 0x02, 0x01, 0x00 };
+    unsigned refusal;
+    (void)state;
+    for (refusal = 0; refusal < 3; refusal++) {
+        struct rcx *b = brick_new();
+        assert_int_equal(begin(b, 1, 3, 40), 0);
+        assert_int_equal(block(b, 1, code, 20), 0);
+        if (refusal == 0)
+            assert_int_equal(begin(b, 1, 10, 5), 2);       /* task number 10 */
+        else if (refusal == 1)
+            assert_int_equal(begin(b, 0, 8, 5), 2);        /* subroutine number 8 */
+        else
+            assert_int_equal(begin(b, 1, 4, 0xFFF0), 1);   /* more than the memory */
+        assert_int_equal(mem_obj_size(b, rcx_obj_task(0, 3)), 0);
+        assert_int_equal(block(b, 0, code, 20), 6);
+        brick_free(b);
+    }
+}
+
 static void not_runnable_until_last_block(void **state)
 {
     static const u8 code[] = { 0x14, 0x07, 0x02, 0x01, 0x00, 0x14, 0x07, 0x02, 0x02, 0x00, 0x14, 0x07, 0x02,
@@ -459,6 +485,7 @@ int main(void)
         cmocka_unit_test(repeated_block_written_once),
         cmocka_unit_test(out_of_order_and_oversize_blocks),
         cmocka_unit_test(abandoned_download),
+        cmocka_unit_test(refused_begin_ends_unfinished_download),
         cmocka_unit_test(not_runnable_until_last_block),
         cmocka_unit_test(replacing_code_keeps_running_tasks),
         cmocka_unit_test(delete_and_redownload_compacts),
