@@ -59,24 +59,22 @@ void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
     u8 s = t->ev.state, n = ACCESS_NONE;
 
-    if (input == ACCESS_IN_EV || input == ACCESS_IN_EXIT_EV) {
-        if (!ACCESS_HAS_EV(s))
-            return;
-        if (input == ACCESS_IN_EV) {
-            t->sub = t->ev.ev_sub;
-            jump(b, t, t->ev.ev_pc);
+    if (input != ACCESS_IN_END) {
+        if (input & 1) { /* AC, EXIT AC */
+            if (!ACCESS_HAS_AC(s))
+                return;
+            if (s == ACCESS_EV_AC)
+                n = ACCESS_EV;
+        } else {
+            if (!ACCESS_HAS_EV(s))
+                return;
+            if (s == ACCESS_AC_EV)
+                n = ACCESS_AC;
         }
-        if (s == ACCESS_AC_EV)
-            n = ACCESS_AC;
-    } else if (input != ACCESS_IN_END) {
-        if (!ACCESS_HAS_AC(s))
-            return;
-        if (input == ACCESS_IN_AC) {
-            t->sub = t->ev.ac_sub;
-            jump(b, t, t->ev.ac_pc);
+        if (input <= ACCESS_IN_AC) {
+            t->sub = input ? t->ev.ac_sub : t->ev.ev_sub;
+            jump(b, t, input ? t->ev.ac_pc : t->ev.ev_pc);
         }
-        if (s == ACCESS_EV_AC)
-            n = ACCESS_EV;
     }
     if (!ACCESS_HAS_AC(n))
         t->ev.rc = 0; /* RELEASE RC */
@@ -125,20 +123,21 @@ void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 targe
  * performed directly. The request changes other tasks only, so this task's state is still the one it had. */
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
 {
-    u8 ok = request(b, t, resources);
+    u8 s = t->ev.state;
 
-    /* AC=LBL: after the IF OK, or before it in the states with an access region. */
-    if (ok || ACCESS_HAS_AC(t->ev.state)) {
-        t->ev.ac_pc = target;
-        t->ev.ac_sub = t->sub;
-    }
-    if (!ok) {
+    if (request(b, t, resources)) {
+        t->ev.rc = resources;
+        t->ev.state = ACCESS_HAS_EV(s) ? ACCESS_EV_AC : ACCESS_AC;
+    } else {
         /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the same
          * place: what remains of it is EXIT AC, which does nothing outside an access region. */
         jump(b, t, target);
         access_input(b, t, ACCESS_IN_EXIT_AC);
-        return;
+        if (!ACCESS_HAS_AC(s))
+            return;
     }
-    t->ev.rc = resources;
-    t->ev.state = ACCESS_HAS_EV(t->ev.state) ? ACCESS_EV_AC : ACCESS_AC;
+    /* AC=LBL: after the IF OK, or before it in the states with an access region (neither JUMP nor EXIT AC reads
+     * it). */
+    t->ev.ac_pc = target;
+    t->ev.ac_sub = t->sub;
 }

@@ -6,6 +6,12 @@
  * One evaluation works out everything that just happened to the event's sensor (as a set of event types: its
  * state moved, its boolean moved, a click completed...) and fires the event when its own type is in that set. The
  * set only ever holds types the spec's table of valid combinations allows on that kind of sensor.
+ *
+ * Work goes only where events are: each input counts the events watching it and sensor[0] those watching a timer,
+ * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
+ * other sensors, costs nothing here, and an evaluation visits the events of one sensor only. An event on an input
+ * is still looked at after every sample, steady or not: its thresholds can be moved by SetSourceValue, which does
+ * not tell the engine, and a calibration samples every millisecond.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -32,39 +38,35 @@ static const u8 boolean_edge[2][2] = {
 };
 
 /* Default lower and upper thresholds set by SetEvent (p. 71; hysteresis is always 0): physical sensor modes 0-7
- * (bits 5-7 of the sensor mode), then the virtual sensors. */
-#define VIRTUAL_TIMER 8
-#define VIRTUAL_MESSAGE 9
-#define VIRTUAL_COUNTER 10
+ * (bits 5-7 of the sensor mode), then the virtual sensors, the timers sharing the row of the counting modes. */
+#define VIRTUAL_TIMER 2
+#define VIRTUAL_MESSAGE 8
+#define VIRTUAL_COUNTER 9
 static const u8 virtual_row[RCX_EVENT_SRC_LAST + 1 - RCX_SENSORS] = {
     VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_TIMER, VIRTUAL_MESSAGE,
     VIRTUAL_COUNTER, VIRTUAL_COUNTER, VIRTUAL_COUNTER,
 };
-static const s16 events_default[11][2] = {
+static const s16 events_default[10][2] = {
     { 0, 1023 },        /* raw */
     { 0, 1 },           /* boolean */
-    { 0, 32767 },       /* transition count */
+    { 0, 32767 },       /* transition count; timer */
     { 0, 32767 },       /* period count */
     { 0, 100 },         /* percent of full scale */
     { -200, 700 },      /* Celsius x 10 */
     { -40, 1580 },      /* Fahrenheit x 10 */
     { 0, 32767 },       /* angle steps */
-    { 0, 32767 },       /* timer */
     { 0, 255 },         /* IR message */
     { -32768, 32767 },  /* counter */
 };
 
-/* Modes whose calibration adds a hysteresis taken from the raw samples (pp. 104-105): raw, percent (reflection),
- * Celsius and Fahrenheit (temperature). The raw-mode formula is lost from the spec (its page is missing); it is
- * taken to be the reflection one, since both work on the same A/D scale. */
-#define CAL_HYSTERESIS_MODES 0x71u
 #define CAL_SAMPLES_PHYSICAL 8  /* p. 74 */
 
-/* The source of a cleared event: out of every range evaluate_sources() is asked for. */
-#define NO_SENSOR 0xFF
+/* struct rcx_event.source is the KEY of the event's sensor, 0 for a cleared event: so an event is all zeros when it
+ * has no sensor, as at power-on, before ClearAllEvents, when no input counts it yet. */
+#define KEY(sensor) ((u8)((sensor) + 1))
 
 /* Private flags of struct rcx_event. */
-#define F_BOOL 0x01     /* last boolean seen (inputs) */
+#define F_BOOL 0x01     /* last boolean seen (inputs); the boolean is 0 or 1, so it is that bit */
 #define F_OUT 0x02      /* the state has left LOW: a click may be under way (click.left_low is its start) */
 #define F_HIGH 0x04     /* ... and has reached HIGH since */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
@@ -75,6 +77,23 @@ static u8 bit_of(u16 set, u8 n)
     while (n--)
         set >>= 1;
     return (u8)(set & 1u);
+}
+
+/* One more (d = 1) or one less (d = 0xFF) event watches the sensor whose KEY is k (not 0): an input counts its own
+ * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the
+ * input, or sensor[0]. */
+static struct rcx_sensor *watch(struct rcx *b, u8 k, u8 d)
+{
+    struct rcx_sensor *s = b->sensor;
+
+    if (k > KEY(RCX_SENSORS - 1)) {
+        s->others = (u8)(s->others + d);
+    } else {
+        s += k - KEY(0);
+        s->number = (u8)(k - KEY(0));
+        s->watched = (u8)(s->watched + d);
+    }
+    return s;
 }
 
 /* Spec p. 25: tasks monitoring events are not told. */
@@ -88,26 +107,27 @@ void events_clear_all(struct rcx *b)
 void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
 {
     struct rcx_event *e;
+    const struct rcx_sensor *in;
     u8 row;
 
     /* 4-6, 13, 15 and above 16 are no event types; 16 clears the event. */
     if (ev >= RCX_EVENTS || source > RCX_EVENT_SRC_LAST || (type != RCX_EVENT_NONE && !bit_of(VALID_TYPES, type)))
         return;
     e = &b->event[ev];
-    memset(e, 0, sizeof *e);
+    if (e->source)
+        watch(b, e->source, 0xFF);
+    memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
     e->type = type;
     e->state = RCX_EVENT_STATE_UNDEFINED;
     e->duration = 15; /* 150 ms, the click default of p. 71 */
-    if (type == RCX_EVENT_NONE) {
-        e->source = NO_SENSOR; /* never evaluated */
+    if (type == RCX_EVENT_NONE)
         return;
-    }
-    e->source = source;
+    e->source = KEY(source);
+    in = watch(b, e->source, 1);
     if (source < RCX_SENSORS) {
-        row = (u8)(b->sensor[source].mode >> 5);
+        row = (u8)(in->mode >> 5);
         /* Edges are counted from here on, not from whatever the input did before. */
-        if (b->sensor[source].boolean)
-            e->flags = F_BOOL;
+        e->flags = in->boolean; /* F_BOOL */
     } else {
         row = virtual_row[source - RCX_SENSORS];
     }
@@ -119,7 +139,7 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
 {
     struct rcx_event *e;
 
-    if (ev >= RCX_EVENTS || (e = &b->event[ev])->type == RCX_EVENT_NONE)
+    if (ev >= RCX_EVENTS || !(e = &b->event[ev])->source)
         return; /* a cleared event has no sensor to measure */
     e->state = RCX_EVENT_STATE_CAL_START;
     e->flags &= F_BOOL;
@@ -132,9 +152,9 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
 /* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply. */
 static s16 fraction(s16 v, u8 f)
 {
-    u16 m = (u16)(v < 0 ? 0u - (u16)v : (u16)v);
+    u16 s = (u16)(v >> 15), m = (u16)(((u16)v ^ s) - s); /* s: 0, or all ones for a negative v */
     m = (u16)((u16)(u8)(m >> 8) * f + (((u16)(u8)m * f) >> 8));
-    return (s16)(v < 0 ? 0u - m : m);
+    return (s16)((m ^ s) - s);
 }
 
 /* a + b, saturated to the 16-bit range. */
@@ -142,17 +162,21 @@ static s16 add_sat(s16 a, s16 b)
 {
     s16 r = (s16)(u16)((u16)a + (u16)b);
     if ((a ^ r) & (b ^ r) & 0x8000)
-        r = a < 0 ? -32768 : 32767;
+        r = (s16)(0x7FFF ^ (a >> 15)); /* the limit on a's side */
     return r;
 }
 
 /* One calibration sample (pp. 74, 103-105) of `in`, the input measured (NULL: a virtual sensor, one sample).
  * UT = Avg + Avg*UTFct/k1 (+ H), LT = Avg - Avg*LTFct/k1 (- H), H = AvgRaw*HFct/k2 for the raw-scale modes and 0
  * otherwise; k1 = 256, k2 = 2048 (H is (AvgRaw*HFct/256)/8). The average of 8 is kept as the sum of value/8 plus the
- * sum of the remainders, which stays within 16 bits. The hysteresis changes only when the thresholds do. */
+ * sum of the remainders, which stays within 16 bits. The hysteresis changes only when the thresholds do.
+ * The raw-scale modes (pp. 104-105) are raw, percent (reflection), Celsius and Fahrenheit (temperature); the
+ * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
+ * the same A/D scale. */
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
+    u8 m;
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
@@ -162,11 +186,12 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
         if (++c->count < CAL_SAMPLES_PHYSICAL)
             return;
         avg = (s16)(c->sum8 + (c->rem >> 3));
-        e->hysteresis = bit_of(CAL_HYSTERESIS_MODES, (u8)(in->mode >> 5))
-                            ? (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3) : 0;
-    } else {
-        e->hysteresis = 0;
+        m = (u8)(in->mode & ~SENSOR_SLOPE);
+        if ((u8)(m - SENSOR_MODE_BOOL) <= SENSOR_MODE_PERIODS - SENSOR_MODE_BOOL || m == SENSOR_MODE_ANGLE)
+            c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
+    /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. */
+    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
     e->lower = add_sat((s16)(avg - fraction(avg, c->pct[0])), (s16)-e->hysteresis);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
@@ -177,16 +202,18 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
  * LOW -> HIGH -> LOW within the duration; a double click is a click that starts within the duration after the
  * previous click ended. Returns the event types that happened, all of them 8-15: bit n is type 8 + n. */
 #define TYPE_8(type) ((u8)(1u << ((type) - 8)))
+RCX_STATIC_ASSERT(states_are_types, RCX_EVENT_STATE_LOW == 0 && RCX_EVENT_STATE_NORMAL == 1 &&
+                  RCX_EVENT_STATE_HIGH == 2 && RCX_EVENT_LOW == 8 && RCX_EVENT_NORMAL == 9 && RCX_EVENT_HIGH == 10);
 static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
 {
     u16 now = b->ticks10;
-    u8 f = e->flags, happened = (u8)(TYPE_8(RCX_EVENT_LOW) << to); /* LOW, NORMAL, HIGH follow the states */
+    u8 f = e->flags, happened = (u8)(to + 1 + (to >> 1)); /* 1 << to: LOW, NORMAL, HIGH follow the states */
 
     if (e->state == RCX_EVENT_STATE_LOW) {
         e->u.click.left_low = now;
         f = (u8)((f & ~F_HIGH) | F_OUT);
     } else if (to == RCX_EVENT_STATE_LOW) {
-        if ((f & F_OUT) && (f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
+        if (!(~f & (F_OUT | F_HIGH)) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
             e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
             happened |= TYPE_8(RCX_EVENT_CLICK);
             if ((f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
@@ -217,27 +244,36 @@ static u8 classify(const struct rcx_event *e, s16 value)
     return RCX_EVENT_STATE_NORMAL;
 }
 
-/* Evaluate event e against its sensor's present value; `happened` brings what the caller already knows (a
- * mailbox). Returns non-zero when the event fires. */
-static u8 evaluate(struct rcx *b, struct rcx_event *e, u16 happened)
+/* Evaluate event e against its sensor's present value, when that is sensor `only` (ANY: whatever it is). Only
+ * events_message_changed() asks for the message: a mailbox event happened. Returns non-zero when the event fires. */
+#define ANY 0xFE /* above every sensor, and so is its KEY */
+static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
-    u8 s = e->source, to;
+    u8 s = (u8)(e->source - KEY(0)), to;
+    u16 happened = 0;
     s16 value;
 
+    if (only != ANY) {
+        if (s != only)
+            return 0;
+        if (s == RCX_EVENT_SRC_MESSAGE)
+            happened = HAPPENED(RCX_EVENT_MAILBOX);
+    }
     if (s < RCX_SENSORS) {
         in = &b->sensor[s];
         value = in->value;
-        if (((in->boolean != 0) ^ e->flags) & F_BOOL) {
+        if ((in->boolean ^ e->flags) & F_BOOL) { /* the boolean is 0 or 1 */
             e->flags ^= F_BOOL;
-            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][e->flags & F_BOOL];
+            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][in->boolean];
         }
-    } else if (s < RCX_EVENT_SRC_MESSAGE) {
-        value = (s16)b->timer[s - RCX_EVENT_SRC_TIMER];
     } else if (s == RCX_EVENT_SRC_MESSAGE) {
         value = b->message;
-    } else {
-        value = b->global[s - RCX_EVENT_SRC_COUNTER];
+    } else { /* timer[s - 3] or global[s - 8] (counters), both 16-bit */
+        value = *(const s16 *)(const void *)((const u8 *)b + 2u * s +
+                                             (s < RCX_EVENT_SRC_MESSAGE
+                                                  ? offsetof(struct rcx, timer) - 2u * RCX_EVENT_SRC_TIMER
+                                                  : offsetof(struct rcx, global) - 2u * RCX_EVENT_SRC_COUNTER));
     }
     if (e->state >= RCX_EVENT_STATE_CAL_START) {
         calibrate_sample(in, e, value);
@@ -248,22 +284,27 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u16 happened)
     if (to != e->state && e->state != RCX_EVENT_STATE_UNDEFINED)
         happened |= (u16)((u16)changed(b, e, to) << 8);
     e->state = to;
-    return bit_of(happened, e->type);
+    return happened && bit_of(happened, e->type);
 }
 
-/* Evaluate every event on sensors from..to and tell the tasks. Only events_message_changed() starts at the message:
- * a mailbox event happened. */
-static void evaluate_sources(struct rcx *b, u8 from, u8 to)
+/* Evaluate the events watching input `only`, or, when `only` is another sensor (ANY: any of them), those of the
+ * events watching a timer, the message or a counter that watch it - `left` events in all - and tell the tasks. */
+RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
+                  sizeof(((struct rcx *)0)->global[0]) == 2);
+static void evaluate_set(struct rcx *b, u8 left, u8 only)
 {
     struct rcx_event *e = b->event;
     u16 bit = 1, fired = 0;
+    u8 k;
 
-    do {
-        if (e->source >= from && e->source <= to &&
-            evaluate(b, e, from == RCX_EVENT_SRC_MESSAGE ? HAPPENED(RCX_EVENT_MAILBOX) : 0))
-            fired |= bit;
-        e++;
-    } while (bit <<= 1);
+    for (; left; bit <<= 1, e++) { /* the counts are exact (events_set() keeps them): the loop ends in the array */
+        k = e->source;
+        if (only < RCX_SENSORS ? k == KEY(only) : k > KEY(RCX_SENSORS - 1)) {
+            left--;
+            if (evaluate(b, e, only))
+                fired += bit; /* bits of distinct events: no carries */
+        }
+    }
     if (fired)
         events_raise(b, fired);
 }
@@ -284,21 +325,24 @@ void events_raise(struct rcx *b, u16 mask)
 
 void events_counter_changed(struct rcx *b, u8 n)
 {
-    u8 s = (u8)(RCX_EVENT_SRC_COUNTER + n);
     if (n < RCX_COUNTERS)
-        evaluate_sources(b, s, s);
+        evaluate_set(b, b->sensor[0].others, (u8)(RCX_EVENT_SRC_COUNTER + n));
 }
 
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 void events_message_changed(struct rcx *b)
 {
-    evaluate_sources(b, RCX_EVENT_SRC_MESSAGE, RCX_EVENT_SRC_MESSAGE);
+    evaluate_set(b, b->sensor[0].others, RCX_EVENT_SRC_MESSAGE);
 }
 
 void events_input(struct rcx *b, u8 n)
 {
-    if (n < RCX_SENSORS)
-        evaluate_sources(b, n, n);
+    const struct rcx_sensor *s;
+
+    if (n < RCX_SENSORS) {
+        s = b->sensor + n;
+        evaluate_set(b, s->watched, n);
+    }
 }
 
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
@@ -306,8 +350,8 @@ void events_input(struct rcx *b, u8 n)
  * durations use, right after each 100 ms timer step. */
 void events_tick(struct rcx *b)
 {
-    if (b->ms == 0)
-        evaluate_sources(b, RCX_EVENT_SRC_TIMER, RCX_EVENT_SRC_LAST);
+    if (b->ms == 0 && b->sensor[0].others)
+        evaluate_set(b, b->sensor[0].others, ANY);
 }
 
 /* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on

@@ -41,7 +41,7 @@ struct rcx_task;
 #define RCX_EVENT_STATE_CAL_BUSY 5
 
 struct rcx_event {
-    u8 source;      /* 0-2 inputs, 3-6 timers, 7 message, 8-10 counters; 0xFF when cleared */
+    u8 source;      /* 1 + the sensor: 0-2 inputs, 3-6 timers, 7 message, 8-10 counters; 0 when cleared */
     u8 type;        /* see RCX_EVENT_*; RCX_EVENT_NONE when cleared */
     u8 state;       /* source 25 */
     u8 flags;       /* private to events.c: last boolean, click progress */

@@ -1,6 +1,10 @@
 /*
  * Sensor processing: every millisecond each input's raw sample becomes its boolean (source 13) and, by mode, its
  * value (source 9). Conversions and thresholds are rcx-hardware.md §3.3 and reference-firmware.md "Sensors".
+ *
+ * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
+ * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
+ * (rcx_sensor.quiet), telling only the events that watch the input, if any.
  */
 #include "rcx.h"
 #include "hal.h"
@@ -50,14 +54,13 @@ static const struct temp_piece temp_table[] = { /* from the top down */
     TEMP_PIECE(TEMP_LOW, -261, 145200),
 };
 
+/* raw: TEMP_LOW ... TEMP_HIGH */
 static s16 celsius(u16 raw)
 {
     const struct temp_piece *p = temp_table;
     u16 y, q;
     s16 e;
 
-    if (raw < TEMP_LOW || raw > TEMP_HIGH)
-        return SENSOR_TEMP_INVALID;
     while (raw < p->start)
         p++;
     y = (u16)((raw - p->start) * (p->slope + 100u) + p->frac);
@@ -79,20 +82,15 @@ static s16 celsius(u16 raw)
 static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
 #define rotation_phase(raw) phase_of[(raw) >> 6]
 
-/* Input n, or NULL when there is no such input. Shared by the entry points, so kept out of line. */
-static __attribute__((noinline)) struct rcx_sensor *input(struct rcx *b, u8 n)
-{
-    return n < RCX_SENSORS ? &b->sensor[n] : NULL;
-}
-
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
 {
-    struct rcx_sensor *s = input(b, n);
+    struct rcx_sensor *s;
 
-    if (s) {
-        s->value = 0;
-        s->stale = 1;
-    }
+    if (n >= RCX_SENSORS)
+        return NULL;
+    s = &b->sensor[n];
+    s->value = 0;
+    s->quiet = SENSOR_MOVING;
     return s;
 }
 
@@ -110,7 +108,6 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     raw = s->raw;
     s->past[0] = raw;
     s->past[1] = raw;
-    s->past[2] = raw;
     s->phase = rotation_phase(raw);
     /* Light and rotation sensors are active: they take their power from the input (rcx-hardware.md §3.3). */
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
@@ -130,9 +127,11 @@ static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
     s16 v;
 
     if (mode == SENSOR_MODE_PERCENT)
-        return raw < PERCENT_FULL_BELOW ? 100 : (s16)((1023u - raw) * 25u / 156u);
+        return raw < PERCENT_FULL_BELOW ? 100 : (s16)((raw ^ 1023u) * 25u / 156u); /* 1023 - raw */
+    if (raw < TEMP_LOW || raw > TEMP_HIGH)
+        return SENSOR_TEMP_INVALID;
     v = celsius(raw);
-    if (mode == SENSOR_MODE_FAHRENHEIT && v != SENSOR_TEMP_INVALID)
+    if (mode == SENSOR_MODE_FAHRENHEIT)
         v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
     return v;
 }
@@ -177,17 +176,22 @@ static s8 rotation_step(struct rcx_sensor *s, u16 raw)
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
 
-static void sample(struct rcx_sensor *s, u16 raw)
+/* A sample that may change something (| SENSOR_STEADY, as sensor_sample() had it). Conversions cost divisions, which
+ * the brick does in software, but a sample comes here only when raw changed or has not been the same for
+ * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
+static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
     s8 step;
     s16 v;
-    u16 then;
+    u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
-    then = s->past[0]; /* the samples of the last SENSOR_DT_MS milliseconds, oldest first */
+    raw &= 0x3FF;
     s->past[0] = s->past[1];
-    s->past[1] = s->past[2];
-    s->past[2] = raw;
+    s->past[1] = last;
+    s->quiet = raw | SENSOR_STEADY;
+    if (raw != last || raw != s->past[0])
+        s->quiet = SENSOR_MOVING;
     step = rotation_step(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
@@ -198,25 +202,32 @@ static void sample(struct rcx_sensor *s, u16 raw)
     else if (mode == SENSOR_MODE_BOOL)
         v = s->boolean;
     else if (mode == SENSOR_MODE_TRANSITIONS)
-        v = (s16)(v + (s->boolean != was));
+        v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
     else if (mode == SENSOR_MODE_PERIODS)
         v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
     else if (mode == SENSOR_MODE_ANGLE)
         v = (s16)(v + step);
-    else if (raw != s->raw || s->stale) /* conversions cost divisions, which the brick does in software: skip them
-                                           while raw holds still */
+    else
         v = converted(mode, raw);
     s->value = v;
-    s->stale = 0;
     s->raw = raw;
+    if (s->watched)
+        events_input(b, s->number);
 }
 
+/* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
+ * the boolean and the value are the ones the last of them gave (the boolean of a steady signal is a function of
+ * the level and of the boolean before, and that function keeps its own result). */
 void sensor_sample(struct rcx *b, u8 n, u16 raw)
 {
-    struct rcx_sensor *s = input(b, n);
+    struct rcx_sensor *s;
 
-    if (s) {
-        sample(s, raw & 0x3FF);
-        events_input(b, n);
-    }
+    raw |= SENSOR_STEADY;
+    if (n >= RCX_SENSORS)
+        return;
+    s = &b->sensor[n];
+    if (raw != s->quiet)
+        sample(b, s, raw);
+    else if (s->watched)
+        events_input(b, s->number);
 }

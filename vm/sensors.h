@@ -34,15 +34,22 @@ enum sensor_type { SENSOR_NONE = 0, SENSOR_TOUCH, SENSOR_TEMPERATURE, SENSOR_LIG
 /* Dynamic measurement compares each sample with the one of this many milliseconds before (spec p. 102: dt = 3 ms). */
 #define SENSOR_DT_MS 3
 
+/* rcx_sensor.quiet: what the next sample can change. 0 at power-on, so the first sample is worked out in full. */
+#define SENSOR_MOVING 0         /* anything: the last samples differ, or the value, mode or type was reset */
+#define SENSOR_STEADY 0x8000    /* | raw: the last SENSOR_DT_MS samples were raw, so another one changes nothing */
+
 struct rcx_sensor {
+    u16 quiet;      /* SENSOR_MOVING, or SENSOR_STEADY | raw */
     s16 value;      /* source 9 */
-    u16 raw;        /* source 12: last 10-bit sample */
-    u16 past[SENSOR_DT_MS]; /* the last samples, oldest first, for the change rate */
+    u16 raw;        /* source 12: last 10-bit sample, the newest of the change rate's history ... */
+    u16 past[SENSOR_DT_MS - 1]; /* ... and the ones before it, oldest first */
     u8 type;        /* source 10 */
     u8 mode;        /* source 11 */
     u8 boolean;     /* source 13 */
-    u8 stale;       /* the value must be converted again even if raw has not changed */
     u8 phase;       /* rotation sensor phase 0-3 of the last valid sample */
+    u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
+    u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
+    u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
