@@ -1,148 +1,158 @@
 /*
- * The interpreter: one byte code of one task per call, and the round-robin scheduler around it.
+ * The interpreter: byte codes of the running tasks in round-robin order, one per task and pass of the scheduler.
  *
  * Control flow lives here (jumps, loops, tests, subroutines, waits, monitoring and access-control regions);
  * everything else is shared with direct commands in ops.c. Code is untrusted: an instruction that runs past the
  * end of its code object, or a jump that lands outside it, stops the task instead of reading foreign memory.
  */
 #include "rcx.h"
+#include "sources.h"
 
-/* Relations of SCheckDo/LCheckDo (spec p. 93): the jump is taken when the comparison FAILS. */
-static u8 holds(u8 rel, s16 a, s16 b)
-{
-    switch (rel) {
-    case 0: return a > b;
-    case 1: return a < b;
-    case 2: return a == b;
-    default: return a != b;
-    }
-}
+/* Relations of SCheckDo/LCheckDo (spec p. 93): bit 0 (a < b), 1 (a == b) or 2 (a > b) of each row holds.
+ * The jump is taken when the comparison FAILS. */
+static const u8 relation[4] = { 4, 1, 2, 5 };
 
-static void stop(struct rcx *b, struct rcx_task *t)
-{
-    sched_stop_task(b, (u8)(t - b->task));
-}
-
-/* EndOfSub, explicit or by running off the end of a subroutine (nqc does not append 0xF6). */
-static void end_of_sub(struct rcx *b, struct rcx_task *t)
+/* EndOfSub, explicit or by running off the end of a subroutine (nqc does not append 0xF6). Returns 0 when the task
+ * has no return address and must stop (spec p. 26: something has gone wrong). */
+static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
 {
     events_sub_returned(b, t);
-    if (!t->has_ret) {
-        stop(b, t); /* spec p. 26: no return address means something has gone wrong */
-        return;
-    }
+    if (!t->has_ret)
+        return 0;
     t->has_ret = 0;
     t->sub = t->ret_sub;
     t->pc = t->ret_pc;
-}
-
-/* Sign-magnitude distances: 7 bits (+ 8 more in a second byte), bit 7 of the first byte = backwards. */
-static s16 dist_sm8(const u8 *f)
-{
-    s16 d = (s16)(f[0] & 0x7F);
-    return (f[0] & 0x80) ? (s16)-d : d;
-}
-static s16 dist_sm16(const u8 *f)
-{
-    s16 d = (s16)((f[0] & 0x7F) | ((u16)f[1] << 7));
-    return (f[0] & 0x80) ? (s16)-d : d;
-}
-
-#define NO_JUMP 0xFFFFu
-#define OUTSIDE 0xFFFEu /* larger than any code object */
-
-/* The position `d` bytes from the distance field at `from`, or OUTSIDE when it falls outside 0..0xFFFD.
- * In 16 bits: 32-bit arithmetic costs the H8/300 several times the code. */
-static u16 jump_fwd(u16 from, u16 d)
-{
-    return d >= (u16)(OUTSIDE - from) ? OUTSIDE : (u16)(from + d);
-}
-static u16 jump_to(u16 from, s16 d)
-{
-    if (d < 0) {
-        u16 m = (u16)(0u - (u16)d);
-        return m > from ? OUTSIDE : (u16)(from - m);
-    }
-    return jump_fwd(from, (u16)d);
+    return 1;
 }
 
 /*
- * Execute one byte code of task t. `code`/`size` are its current code object.
- * Returns nothing; the task's state says what happened.
+ * The program-only byte codes run_slow() handles itself, found by a search (a switch on the sparse opcodes would
+ * cost the H8/300 a tree of long branches), the commonest first. The first twelve carry a distance, in pairs of a
+ * short (even index) and a long form; dist_at gives its field's offset per pair. Each distance counts from the first
+ * byte of its own field (spec p. 11):
+ *   0-1   forward unsigned 8 bits, or signed 16 bits
+ *   2-3   forward, unsigned 8 or 16 bits
+ *   4-11  sign-magnitude: 7 bits (+ 8 more in a second byte), bit 7 of the first byte = backwards
  */
-static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
+#define OUTSIDE 0xFFFFu /* larger than any code object */
+#define NOT_AN_OP 0x08 /* has the toggle bit: no opcode reaches the search with it */
+static const u8 control[] = {
+    RCX_OP_SCHECK_DO, RCX_OP_LCHECK_DO,
+    RCX_OP_SCHECK_LOOP, RCX_OP_LCHECK_LOOP,
+    RCX_OP_SJUMP, RCX_OP_LJUMP,
+    RCX_OP_SDEC_JUMP_LTZ, RCX_OP_LDEC_JUMP_LTZ,
+    RCX_OP_SENTER_EVENT, RCX_OP_LENTER_EVENT,
+    NOT_AN_OP, RCX_OP_ENTER_ACCESS,
+    RCX_OP_SET_LOOP, RCX_OP_WAIT, RCX_OP_GOSUB, RCX_OP_END_OF_SUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
+};
+static const u8 dist_at[6] = { 6, 1, 1, 2, 4, 2 };
+enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_ACCESS = 11, C_SET_LOOP = 12, C_WAIT,
+       C_GOSUB, C_END_OF_SUB, C_EXIT_EVENT, C_EXIT_ACCESS };
+
+/* Where the code task n executes starts: its code object's entry in b->obj_start (the next entry is its end). */
+#define OBJECT_OF(b, t, n) \
+    (&(b)->obj_start[(u8)((b)->prog * RCX_SLOT_OBJS + ((t)->sub == RCX_NO_SUB ? (n) + RCX_SUBS : (t)->sub))])
+
+/*
+ * Execute the byte code at the pc of task n, whose code object is at OBJECT_OF(), or end its code: the task ends, or
+ * returns from its subroutine. An instruction that runs past the end of the code, or a jump that lands outside it,
+ * stops the task.
+ */
+static __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
 {
-    u16 pc = t->pc;
-    const u8 *ins = code + pc;
-    u8 op = (u8)(ins[0] & ~RCX_TOGGLE);
-    u8 n = rcx_op_params(op);
-    u16 field = (u16)(pc + 1);         /* position of the first operand */
-    u16 target = NO_JUMP;              /* a taken jump's destination */
+    struct rcx_task *t = &b->task[n];
+    u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
+    const u8 *ins;
+    u8 op, i, jump = 0, len, flags;
     s16 value;
     s16 *var;
 
-    if ((u16)(size - pc) <= n) {       /* truncated instruction at the end of the code */
-        stop(b, t);
-        return;
+    if (pc >= size) {                  /* the end of the code */
+        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
+            return;
+        goto stop;                     /* a task ends there */
     }
-    t->pc = (u16)(field + n);
+    ins = b->arena + at[0] + pc;
+    op = (u8)(ins[0] & ~RCX_TOGGLE);
+    flags = rcx_opflags[rcx_op_index(op)];
+    len = flags ? (u8)(flags & 7) : rcx_op_nominal_params(op); /* as rcx_op_params() */
+    if ((u16)(size - pc) <= len)
+        goto stop;                     /* truncated instruction at the end of the code */
+    t->pc = (u16)(pc + 1 + len);
 
-    switch (op) {
-    case RCX_OP_SET_VAR:               /* the commonest byte codes go straight to their handler */
-    case RCX_OP_SUM_VAR:
-    case RCX_OP_SUB_VAR:
-    case RCX_OP_MUL_VAR:
-    case RCX_OP_DIV_VAR:
-    case RCX_OP_SGN_VAR:
-    case RCX_OP_ABS_VAR:
-    case RCX_OP_AND_VAR:
-    case RCX_OP_OR_VAR:
-        ops_var(b, t, ins);
+    i = sizeof control;                /* the byte codes shared with direct commands are none of these */
+    if (((flags >> 3) & 3) == RCX_PROGRAM)
+        for (i = 0; i < sizeof control && control[i] != op; i++)
+            ;
+    if (i < C_SET_LOOP) {
+        u8 field = dist_at[i >> 1];
+        const u8 *p = ins + field;
+        u16 d = p[0], from = (u16)(pc + field);
+        u8 back = 0;
+        if (i & 1)
+            d |= (u16)p[1] << 8;
+        if (i >= C_JUMP) {             /* sign-magnitude; the short form has nothing above bit 7 */
+            back = (u8)(d & 0x80);
+            d = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
+        } else if (i == C_CHECK_DO + 1 && (d & 0x8000)) {
+            back = 1;
+            d = (u16)(0u - d);
+        }
+        if (back)
+            to = d > from ? OUTSIDE : (u16)(from - d);
+        else
+            to = d > (u16)(size - from) ? OUTSIDE : (u16)(from + d);
+    }
+
+    switch (i) {
+    case C_JUMP:
+    case C_JUMP + 1:
+        jump = 1;
         break;
-    case RCX_OP_SJUMP:
-        target = jump_to(field, dist_sm8(ins + 1));
-        break;
-    case RCX_OP_LJUMP:
-        target = jump_to(field, dist_sm16(ins + 1));
-        break;
-    case RCX_OP_SDEC_JUMP_LTZ:
-    case RCX_OP_LDEC_JUMP_LTZ:
-        if ((var = var_ref(b, t, ins[1])) == NULL)
-            break;
-        *var = (s16)(u16)((u16)*var - 1u);
-        if (*var < 0)
-            target = jump_to((u16)(field + 1), op == RCX_OP_SDEC_JUMP_LTZ ? dist_sm8(ins + 2) : dist_sm16(ins + 2));
-        break;
-    case RCX_OP_SCHECK_DO:
-    case RCX_OP_LCHECK_DO:
-        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
-        if (!holds((u8)(ins[1] >> 6), source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3)), value)) {
-            if (op == RCX_OP_SCHECK_DO)
-                target = jump_fwd((u16)(field + 5), ins[6]);                /* forward only */
-            else
-                target = jump_to((u16)(field + 5), (s16)RCX_LE16(ins + 6)); /* signed 16-bit */
+    case C_DEC:
+    case C_DEC + 1:
+        if ((var = var_ref(b, t, ins[1])) != NULL) {
+            *var = (s16)(u16)((u16)*var - 1u);
+            jump = *var < 0;
         }
         break;
-    case RCX_OP_SET_LOOP:
+    case C_ENTER:
+    case C_ENTER + 1:
+    case C_ACCESS:
+        if (to > size)
+            goto stop;
+        if (i == C_ACCESS)
+            access_enter(b, t, ins[1], to);
+        else
+            events_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), to);
+        break;
+    case C_CHECK_LOOP:
+    case C_CHECK_LOOP + 1:
+        if ((len = t->loop_depth) == 0)
+            break;                     /* no active loop level: ignored */
+        if (t->loop[len - 1] == 0) {
+            t->loop_depth = (u8)(len - 1);
+            jump = 1;
+        } else {
+            t->loop[len - 1]--;
+        }
+        break;
+    case C_CHECK_DO:
+    case C_CHECK_DO + 1: {
+        s16 a;
+        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
+        a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
+        jump = !(relation[ins[1] >> 6] & (a < value ? 1 : a == value ? 2 : 4));
+        break;
+    }
+    case C_SET_LOOP:
         /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
         if (t->loop_depth < RCX_LOOP_LEVELS) {
             value = source_get(b, t, ins[1], ins[2]);
             t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
         }
         break;
-    case RCX_OP_SCHECK_LOOP:
-    case RCX_OP_LCHECK_LOOP:
-        if (t->loop_depth == 0)
-            break;                     /* no active loop level: ignored */
-        if (t->loop[t->loop_depth - 1] == 0) {
-            t->loop_depth--;
-            /* Forward only: an unsigned distance, 8 or 16 bits. */
-            target = jump_fwd(field, op == RCX_OP_SCHECK_LOOP ? ins[1] : RCX_LE16(ins + 1));
-        } else {
-            t->loop[t->loop_depth - 1]--;
-        }
-        break;
-    case RCX_OP_GOSUB:
+    case C_GOSUB:
         if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
             break;                     /* calling an empty subroutine does nothing */
         /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
@@ -152,96 +162,161 @@ static void step(struct rcx *b, struct rcx_task *t, const u8 *code, u16 size)
         t->sub = ins[1];
         t->pc = 0;
         break;
-    case RCX_OP_END_OF_SUB:
-        if (t->sub == RCX_NO_SUB)
-            stop(b, t);                /* EndOfSub in a task body: no return address */
-        else
-            end_of_sub(b, t);
-        break;
-    case RCX_OP_WAIT:
+    case C_END_OF_SUB:
+        /* In a task body there is no return address. */
+        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
+            break;
+        goto stop;
+    case C_WAIT:
         value = source_get(b, t, ins[1], RCX_LE16(ins + 2));
         if (value <= 0)
             break;                     /* negative: ignored (spec p. 67); zero: no wait */
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */
         t->wake = (u16)(b->ticks10 + (u16)value);
         t->state = RCX_TASK_WAITING;
-        b->runmask &= (u16)~(1u << (t - b->task));
+        b->runmask &= (u16)~(1u << n);
         break;
-    case RCX_OP_SENTER_EVENT:
-    case RCX_OP_LENTER_EVENT: {
-        u16 to = jump_to((u16)(field + 3), op == RCX_OP_SENTER_EVENT ? dist_sm8(ins + 4) : dist_sm16(ins + 4));
-        if (to <= size)
-            events_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), (u16)to);
-        else
-            stop(b, t);
-        break;
-    }
-    case RCX_OP_ENTER_ACCESS: {
-        u16 to = jump_to((u16)(field + 1), dist_sm16(ins + 2));
-        if (to <= size)
-            access_enter(b, t, ins[1], (u16)to);
-        else
-            stop(b, t);
-        break;
-    }
-    case RCX_OP_EXIT_EVENT:
+    case C_EXIT_EVENT:
         events_monitor_exit(b, t);
         break;
-    case RCX_OP_EXIT_ACCESS:
+    case C_EXIT_ACCESS:
         access_exit(b, t);
         break;
     default:
-        if (rcx_op_avail(op) & RCX_PROGRAM)
+        if ((flags >> 3) & RCX_PROGRAM)
             ops_exec(b, t, ins);
         /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
         break;
     }
 
-    if (target == NO_JUMP)
+    if (!jump)
         return;
-    if (target <= size)
-        t->pc = target;
-    else
-        stop(b, t);                    /* a jump outside the code object */
+    if (to <= size) {
+        t->pc = to;
+        return;
+    }                                  /* a jump outside the code object */
+stop:
+    sched_stop_task(b, n);
 }
 
-/* Run task n for one byte code; reaching the end of the code ends the task or returns from the subroutine. */
-static void run_one(struct rcx *b, u8 n)
+/*
+ * Run up to `count` byte codes of task n: the commonest kinds in a loop that calls nothing and keeps the position in
+ * a register, any other (or an irregular case of these: a truncated instruction, a jump leaving the code) through
+ * run_slow(). More than one only while the task is the only one running: the scheduler would pick it every time.
+ * Returns how many of the `count` are left when that stops being so.
+ *
+ * gcc 3.4 gives the loop's values registers only in this shape: the code object's pointers are the function's own
+ * (recomputed after each run_slow(), which may change it), the loop has no calls, and its blocks are in this order
+ * (SJump before the dispatch) so that every way back to the dispatch is a short branch on the H8/300.
+ */
+static __attribute__((noinline)) u8 run_task(struct rcx *b, u8 n, u8 count)
 {
-    struct rcx_task *t = &b->task[n];
-    u8 obj = t->sub == RCX_NO_SUB ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, t->sub);
-    u16 size = mem_obj_size(b, obj);
+    u16 mask = b->runmask;
+    struct rcx_task *t;
+    const u16 *at;
+    const u8 *code, *end, *ip;
+    u8 op, d, v;
+    u16 room, value, old;
+    s16 *var;
 
-    if (t->pc >= size) {
-        if (t->sub == RCX_NO_SUB)
-            stop(b, t);
-        else
-            end_of_sub(b, t);
-        return;
+next:
+    t = &b->task[n];
+    at = OBJECT_OF(b, t, n);
+    code = b->arena + at[0];
+    end = b->arena + at[1];
+    if (t->pc >= (u16)(end - code))
+        goto slow;
+    ip = code + t->pc;
+    /* Invariant: ip < end, so the opcode is inside the code. A byte code the loop runs must leave it so: one that
+     * ends the code, or jumps to its very end, is left to run_slow() as much as any irregular one. */
+    goto dispatch;
+
+sjump:
+    if (--room == 0)                   /* now the bytes from ip + 1 */
+        goto leave;
+    d = ip[1];                         /* distances count from their field, ip + 1 */
+    if (!(d & 0x80)) {
+        if (d >= room)
+            goto leave;
+        ip += 1 + d;
+    } else {
+        d &= 0x7F;
+        if (d > (u16)(ip - code) + 1u)
+            goto leave;
+        ip = ip + 1 - d;
     }
-    step(b, t, mem_obj_code(b, obj), size);
+    if (!--count)
+        goto leave;
+dispatch:
+    op = (u8)(ip[0] & ~RCX_TOGGLE);
+    room = (u16)(end - ip);            /* bytes from the opcode to the end of the code, at least 1 */
+    if (op == RCX_OP_SJUMP)
+        goto sjump;
+    if ((op != RCX_OP_SUM_VAR && op != RCX_OP_SET_VAR && op != RCX_OP_SUB_VAR) || room <= 5)
+        goto leave;
+    value = RCX_LE16(ip + 3);
+    if (ip[2] != RCX_SRC_CONST) {      /* else a global variable, or the slow way */
+        if (ip[2] != RCX_SRC_VAR || value >= RCX_GLOBALS)
+            goto leave;
+        value = (u16)b->global[value];
+    }
+    v = ip[1];
+    var = b->global;
+    if (v >= RCX_GLOBALS) {
+        v = (u8)(v - RCX_GLOBALS);
+        if (v >= RCX_LOCALS)
+            goto leave;
+        var = t->local;
+    }
+    var += v;
+    old = (u16)*var;
+    if (op != RCX_OP_SUM_VAR) {
+        if (op == RCX_OP_SUB_VAR)
+            value = (u16)(0u - value);
+        else
+            old = 0;
+    }
+    *var = (s16)(u16)(old + value);
+    ip += 5;
+    if (--count)
+        goto dispatch;
+
+leave:
+    t->pc = (u16)(ip - code);
+    if (!count)
+        return 0;
+slow:
+    run_slow(b, n, at);
+    if (!--count || b->runmask != mask)
+        return count;
+    goto next;
 }
 
 u16 vm_run(struct rcx *b, u16 budget)
 {
-    u16 done = 0;
-    u8 n = b->rr;
+    u16 left = budget, mask;
+    u8 n = b->rr, count;
 
-    while (done < budget && b->runmask) {
-        u16 m = (u16)(b->runmask >> n);
-        if (!m) {                      /* wrap around: the next pass starts at task 0 */
+    while (left && (mask = b->runmask) != 0) {
+        u16 m;
+        count = 1;
+        if (!(mask & (u16)(mask - 1u))) {
+            /* The only running task runs on: the scheduler would pick it every time (up to 255 at once). */
             n = 0;
-            m = b->runmask;
+            count = (left >> 8) ? 255 : (u8)left;
+        }
+        if ((m = (u16)(mask >> n)) == 0) { /* wrap around: the next pass starts at task 0 */
+            n = 0;
+            m = mask;
         }
         while (!(m & 1)) {
             m >>= 1;
             n++;
         }
-        run_one(b, n);
-        done++;
+        left = (u16)(left - count + run_task(b, n, count));
         if (++n >= RCX_TASKS)
             n = 0;
     }
     b->rr = n;
-    return done;
+    return (u16)(budget - left);
 }

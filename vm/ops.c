@@ -6,24 +6,25 @@
 #include "rcx.h"
 #include "sources.h"
 
-/* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). */
+/* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `op` is one of
+ * SetVar..OrVar (0x14-0x94): its high nibble alone tells them apart, a dense switch. */
 static s16 arith(u8 op, s16 a, s16 v)
 {
-    switch (op) {
-    case RCX_OP_SET_VAR: return v;
-    case RCX_OP_SUM_VAR: return (s16)(u16)((u16)a + (u16)v);
-    case RCX_OP_SUB_VAR: return (s16)(u16)((u16)a - (u16)v);
-    case RCX_OP_MUL_VAR: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
-    case RCX_OP_DIV_VAR:
+    switch (op >> 4) {
+    case RCX_OP_SET_VAR >> 4: return v;
+    case RCX_OP_SUM_VAR >> 4: return (s16)(u16)((u16)a + (u16)v);
+    case RCX_OP_SUB_VAR >> 4: return (s16)(u16)((u16)a - (u16)v);
+    case RCX_OP_MUL_VAR >> 4: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
+    case RCX_OP_DIV_VAR >> 4:
         if (v == 0)
             return a;                            /* division by zero leaves the variable */
         if (v == -1)
             return (s16)(u16)(0u - (u16)a);      /* -32768 / -1 = -32768, without the overflow trap */
         return (s16)(a / v);                     /* C99 truncates toward zero, as firm0328 */
-    case RCX_OP_SGN_VAR: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
-    case RCX_OP_ABS_VAR: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
-    case RCX_OP_AND_VAR: return (s16)(a & v);
-    default:             return (s16)(a | v);    /* RCX_OP_OR_VAR */
+    case RCX_OP_SGN_VAR >> 4: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+    case RCX_OP_ABS_VAR >> 4: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
+    case RCX_OP_AND_VAR >> 4: return (s16)(a & v);
+    default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
     }
 }
 

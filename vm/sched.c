@@ -5,22 +5,14 @@
  */
 #include "rcx.h"
 
-static void halt(struct rcx *b, struct rcx_task *t)
-{
-    b->runmask &= (u16)~(1u << (t - b->task));
-    t->state = RCX_TASK_IDLE;
-    events_task_ended(b, t);
-}
-
 void sched_start_task(struct rcx *b, u8 n)
 {
     struct rcx_task *t;
 
     if (n >= RCX_TASKS || !mem_obj_runnable(b, rcx_obj_task(b->prog, n)))
         return; /* an empty (or half-downloaded) task slot is not started */
+    sched_stop_task(b, n); /* a running task is restarted from the top */
     t = &b->task[n];
-    if (t->state != RCX_TASK_IDLE)
-        halt(b, t); /* a running task is restarted from the top */
     t->sub = RCX_NO_SUB;
     t->pc = 0;
     t->has_ret = 0;
@@ -32,8 +24,13 @@ void sched_start_task(struct rcx *b, u8 n)
 
 void sched_stop_task(struct rcx *b, u8 n)
 {
-    if (n < RCX_TASKS && b->task[n].state != RCX_TASK_IDLE)
-        halt(b, &b->task[n]);
+    struct rcx_task *t;
+
+    if (n >= RCX_TASKS || (t = &b->task[n])->state == RCX_TASK_IDLE)
+        return;
+    b->runmask &= (u16)~(1u << n);
+    t->state = RCX_TASK_IDLE;
+    events_task_ended(b, t);
 }
 
 void sched_stop_all(struct rcx *b)

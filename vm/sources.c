@@ -83,8 +83,10 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     const s16 *v;
     const u8 *p;
 
-    if (src == RCX_SRC_CONST)          /* by far the commonest source: no table look-up */
+    if (src == RCX_SRC_CONST)          /* by far the commonest sources: no table look-up */
         return (s16)index;
+    if (src == RCX_SRC_VAR && index < RCX_GLOBALS)
+        return b->global[index];
     if ((r = row(src, index, LIMIT_EXISTS)) == NULL)
         return 0;
     if (r->shape & SHAPE_FIELD) {
