@@ -66,12 +66,6 @@ static void set_power(struct rcx *b, u8 *reg, u8 motors, s16 power)
     outputs_changed(b);
 }
 
-static u8 event_type_valid(u8 type)
-{
-    /* 0-3 and 7-12 detect, 14 mailbox, 16 clears (spec p. 70). */
-    return type <= 3 || (type >= 7 && type <= 12) || type == 14 || type == 16;
-}
-
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     s16 value = source_get(b, t, ins[2], RCX_LE16(ins + 3));
@@ -194,19 +188,14 @@ OP(op_user_view)
     if (ins[2] <= 3)
         display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
 }
-OP(op_set_event)
-{
-    UNUSED_T;
-    if (ins[1] < RCX_EVENTS && ins[2] <= 10 && event_type_valid(ins[3]))
-        events_set(b, ins[1], ins[2], ins[3]);
-}
+/* The event engine checks event numbers, sources and types itself (spec p. 70). */
+OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
 OP(op_calibrate)
 {
     UNUSED_T;
     /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
      * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
-    if (ins[1] < RCX_EVENTS)
-        events_calibrate(b, ins[1], ins[3], ins[2], ins[4]);
+    events_calibrate(b, ins[1], ins[3], ins[2], ins[4]);
 }
 OP(op_set_source)
 {
