@@ -57,7 +57,10 @@ static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
     ir->rx_state = IR_RX_VALUE;
     op = (u8)(ir->rx[0] & (u8)~RCX_TOGGLE);
     if (ir->rx_len == 1) {
-        ir->rx_need = (u8)(1 + rcx_op_nominal_params(op));
+        v = (u8)(op & 7);          /* rcx_op_nominal_params(), in byte arithmetic */
+        if (v >= 6)
+            v = (u8)(v - 6);
+        ir->rx_need = (u8)(v + 1);
     } else if (ir->rx_len == 5 && op == RCX_OP_CONTINUE_DL) {
         if (ir->rx[4] || ir->rx[3] > IR_BLOCK_MAX)
             ir->rx_state = IR_RX_DRAIN;
@@ -185,7 +188,7 @@ static void execute(struct rcx_brick *k)
 void ir_poll(struct rcx_brick *k)
 {
     struct rcx_ir *ir = &k->ir;
-    u8 n = 0, len = 0;
+    u8 n, len = 0;
 
     if (ir->range != k->vm.tx_range) {
         ir->range = k->vm.tx_range;
@@ -218,8 +221,9 @@ void ir_poll(struct rcx_brick *k)
             tx_start(ir, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
-    if (ir->tx_pos >= ir->tx_total || hal_ir_busy(&k->vm))
+    if (!sending(k) || hal_ir_busy(&k->vm))
         return;
+    n = 0;
     do
         ir->rx[n++] = framed(ir, ir->tx_pos++);
     while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);

@@ -9,6 +9,19 @@ static const u8 unlock_key[5] = { 1, 3, 5, 7, 11 };
 /* ROM 3.1 and firmware 3.28 ("3.2.8") so that host tools treat the brick as firm0328 (reference-firmware.md). */
 static const u8 versions[8] = { 0x00, 0x03, 0x00, 0x01, 0x00, 0x03, 0x02, 0x08 };
 
+/* The commands answered here, in the order of the D_* cases of vm_direct(): a dense switch is a jump table. */
+enum {
+    D_MEMMAP, D_BATTERY, D_DELETE_ALL_TASKS, D_DELETE_TASK, D_DELETE_ALL_SUBS, D_DELETE_SUB, D_POLL, D_UPLOAD_RAM,
+    D_UPLOAD_DATALOG, D_UNLOCK_BRICK, D_BEGIN_TASK, D_BEGIN_SUB, D_CONTINUE_DL, D_BOOT_MODE, D_BEGIN_FIRMWARE,
+    D_UNLOCK_FIRMWARE, D_REMOTE
+};
+static const u8 direct_ops[] = {
+    RCX_OP_MEMMAP, RCX_OP_BATTERY, RCX_OP_DELETE_ALL_TASKS, RCX_OP_DELETE_TASK, RCX_OP_DELETE_ALL_SUBS,
+    RCX_OP_DELETE_SUB, RCX_OP_POLL, RCX_OP_UPLOAD_RAM, RCX_OP_UPLOAD_DATALOG, RCX_OP_UNLOCK_BRICK, RCX_OP_BEGIN_TASK,
+    RCX_OP_BEGIN_SUB, RCX_OP_CONTINUE_DL, RCX_OP_BOOT_MODE, RCX_OP_BEGIN_FIRMWARE, RCX_OP_UNLOCK_FIRMWARE,
+    RCX_OP_REMOTE
+};
+
 enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
 
 /* A task leaves a subroutine's code for good when it is stopped; tasks inside it are stopped first. */
@@ -98,29 +111,31 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
     u8 avail = rcx_op_avail(op);
-    u8 n = 0, i;
+    u8 n = 0, i, c;
 
     if (!(avail & RCX_DIRECT))
         return 0;                  /* unknown or program-only: not answered */
     if (op != RCX_OP_CONTINUE_DL && len < 1 + rcx_op_params(op))
         return 0;                  /* truncated */
     reply[0] = (u8)~cmd[0];
+    for (c = 0; c < sizeof direct_ops && direct_ops[c] != op; c++)
+        ;
 
-    switch (op) {
-    case RCX_OP_MEMMAP:
+    switch (c) {
+    case D_MEMMAP:
         n = mem_memmap(b, reply + 1);
         break;
-    case RCX_OP_BATTERY:
+    case D_BATTERY:
         reply[1] = (u8)b->battery_mv;
         reply[2] = (u8)(b->battery_mv >> 8);
         n = 2;
         break;
-    case RCX_OP_DELETE_ALL_TASKS:
-    case RCX_OP_DELETE_TASK:
-    case RCX_OP_DELETE_ALL_SUBS:
-    case RCX_OP_DELETE_SUB: {
+    case D_DELETE_ALL_TASKS:
+    case D_DELETE_TASK:
+    case D_DELETE_ALL_SUBS:
+    case D_DELETE_SUB: {
         /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
-        u8 tasks = op == RCX_OP_DELETE_ALL_TASKS || op == RCX_OP_DELETE_TASK;
+        u8 tasks = c <= D_DELETE_TASK;
         u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
         u8 first = (op & 7) ? cmd[1] : 0, last = (op & 7) ? (u8)(cmd[1] + 1) : limit;
         for (i = first; i < last && i < limit; i++) {
@@ -132,7 +147,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         }
         break;
     }
-    case RCX_OP_POLL: {
+    case D_POLL: {
         /* Task locals are not pollable: firm0328 answers 0x8000 for them (reference-firmware.md). */
         s16 v = (cmd[1] == 0 && cmd[2] >= RCX_GLOBALS && cmd[2] < RCX_VARS) ? (s16)-32768
                                                                              : source_get(b, NULL, cmd[1], cmd[2]);
@@ -141,7 +156,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         n = 2;
         break;
     }
-    case RCX_OP_UPLOAD_RAM: {
+    case D_UPLOAD_RAM: {
         u16 addr = RCX_LE16(cmd + 1);
         /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
         if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
@@ -149,39 +164,40 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         n = upload_ram(b, addr, cmd[3], reply + 1);
         break;
     }
-    case RCX_OP_UPLOAD_DATALOG: {
+    case D_UPLOAD_DATALOG: {
         s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
         if (bytes < 0)
             return 0;
         n = (u8)bytes;
         break;
     }
-    case RCX_OP_UNLOCK_BRICK:
+    case D_UNLOCK_BRICK:
+    case D_BOOT_MODE:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0) {
-            memcpy(reply + 1, versions, sizeof versions);
-            n = sizeof versions;
+            if (c == D_BOOT_MODE) {
+                b->boot_mode = 1;  /* the runtime answers, then hands the brick to the ROM */
+            } else {
+                memcpy(reply + 1, versions, sizeof versions);
+                n = sizeof versions;
+            }
         }                          /* a wrong key gets a bare acknowledgement */
         break;
-    case RCX_OP_BEGIN_TASK:
-    case RCX_OP_BEGIN_SUB:
-        reply[1] = begin_download(b, op == RCX_OP_BEGIN_TASK, cmd[2], RCX_LE16(cmd + 4));
+    case D_BEGIN_TASK:
+    case D_BEGIN_SUB:
+        reply[1] = begin_download(b, c == D_BEGIN_TASK, cmd[2], RCX_LE16(cmd + 4));
         n = 1;
         break;
-    case RCX_OP_CONTINUE_DL:
+    case D_CONTINUE_DL:
         /* A block shorter than its header announces is a truncated packet: no reply, like any other. */
         if (len < 6 || RCX_LE16(cmd + 3) > (u16)(len - 6))
             return 0;
         reply[1] = continue_download(b, cmd);
         n = 1;
         break;
-    case RCX_OP_BOOT_MODE:
-        if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0)
-            b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
-        break;
-    case RCX_OP_BEGIN_FIRMWARE:
-    case RCX_OP_UNLOCK_FIRMWARE:
+    case D_BEGIN_FIRMWARE:
+    case D_UNLOCK_FIRMWARE:
         return 0;                  /* only the ROM's download mode answers these */
-    case RCX_OP_REMOTE:
+    case D_REMOTE:
         remote_command(b, RCX_LE16(cmd + 1));
         return 0;
     default:

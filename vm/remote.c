@@ -31,7 +31,8 @@ void remote_command(struct rcx *b, u16 bits)
     b->remote.held = bits;
     /* Only a change of the motor buttons touches the motors: a one-shot button must not brake a program's motors. */
     if (changed & REMOTE_MOTORS)
-        outputs_remote(b, (u8)((bits >> 11) & 7u), (u8)(((bits >> 14) & 3u) | ((bits & REMOTE_MOTOR_C_REV) << 2)));
+        outputs_remote(b, (u8)(((u8)(bits >> 8) >> 3) & 7u),
+                       (u8)(((u8)(bits >> 8) >> 6) | (((u8)bits & REMOTE_MOTOR_C_REV) << 2)));
     if (pressed & REMOTE_STOP) {
         sched_stop_all(b);
         outputs_program_stop(b);
