@@ -15,16 +15,6 @@ void ui_init(struct rcx_brick *k)
     memset(&k->ui, 0, sizeof k->ui);
 }
 
-static u8 program_running(const struct rcx *b)
-{
-    u8 n;
-
-    for (n = 0; n < RCX_TASKS; n++)
-        if (b->task[n].state != RCX_TASK_IDLE)
-            return 1;
-    return 0;
-}
-
 /* View steps through inputs 1-3 and outputs A-C, then back to the view it started from (the watch, or a
  * program's own choice), so that looking around does not lose the display a program asked for. */
 static void next_view(struct rcx_brick *k)
@@ -53,12 +43,14 @@ void ui_button(struct rcx_brick *k, u8 button, u8 down)
         k->ui.off = 1;
         return;
     }
+    if (button > RT_BUTTON_PRGM)
+        return;
     if (button == RT_BUTTON_VIEW) {
         next_view(k);
     } else if (button == RT_BUTTON_RUN && !program_running(b)) { /* spec p. 98: "start 0" or "stop" */
         outputs_program_start(b);
         sched_start_task(b, 0);
-    } else if (button == RT_BUTTON_RUN || button == RT_BUTTON_PRGM) {
+    } else {
         if (button == RT_BUTTON_RUN) {
             sched_stop_all(b);
         } else { /* spec p. 98 "prgm N"; selecting stops a running program */
@@ -67,8 +59,6 @@ void ui_button(struct rcx_brick *k, u8 button, u8 down)
             sched_select_program(b, prog < RCX_PROGRAMS ? prog : 0, 0);
         }
         outputs_program_stop(b);
-    } else {
-        return;
     }
     sound_ui(b, 0); /* key click */
 }

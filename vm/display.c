@@ -32,19 +32,22 @@ static const u8 point_segs[4] = { BODY, S(5, 6), S(6, 6), S(8, 6) };
 
 /*
  * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
- * their entries light the figure's body, which is lit anyway), then input 1-3 active (a sensor type is set), output
- * A-C reverse arrows, forward arrows.
+ * their entries light the figure's body, which is lit anyway), then input 1-3 active (a sensor type is set), then
+ * output A-C by the mode on the wire: float (nothing new), reverse arrows, forward arrows, brake (nothing new).
  */
 static const u8 marks[] = {
     BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
+    BODY, BODY, BODY,
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
+    BODY, BODY, BODY,
 };
 #define VIEW_SELECTED 0 /* + view */
 #define INPUT_ACTIVE 8
-#define OUTPUT_REV 11
-#define OUTPUT_FWD 14
+#define OUTPUT_MODE 11 /* + 3 * enum hal_motor_mode + output */
+RCX_STATIC_ASSERT(output_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
+                                HAL_MOTOR_BRAKE == 3);
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -106,13 +109,17 @@ static __attribute__((noinline)) void number(s16 v, u8 places)
         digit(pos, MINUS);
 }
 
-static u8 program_running(const struct rcx *b)
+RCX_STATIC_ASSERT(idle_is_0, RCX_TASK_IDLE == 0);
+
+u8 program_running(const struct rcx *b)
 {
-    const struct rcx_task *t;
-    for (t = b->task; t < b->task + RCX_TASKS; t++)
-        if (t->state != RCX_TASK_IDLE)
-            return 1;
-    return 0;
+    const struct rcx_task *t = b->task;
+    u8 n = RCX_TASKS, any = RCX_TASK_IDLE;
+
+    do
+        any |= t++->state;
+    while (--n);
+    return any;
 }
 
 static void compose(struct rcx *b)
@@ -132,10 +139,7 @@ static void compose(struct rcx *b)
         if (b->sensor[i].type != SENSOR_NONE)
             mark(INPUT_ACTIVE + i);
         mode = outputs_mode(b, i);
-        if (mode == HAL_MOTOR_REV)
-            mark(OUTPUT_REV + i);
-        if (mode == HAL_MOTOR_FWD)
-            mark(OUTPUT_FWD + i);
+        mark((u8)(OUTPUT_MODE + mode * 3 + i));
     }
     view = b->display.view;
     mark(VIEW_SELECTED + view);

@@ -56,5 +56,6 @@ void display_view(struct rcx *b, u8 view);                          /* SelectDis
 void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
 void display_tick(struct rcx *b);                                   /* every 1 ms */
+u8 program_running(const struct rcx *b);                            /* nonzero: a task runs or waits */
 
 #endif

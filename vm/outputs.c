@@ -36,7 +36,7 @@ u8 outputs_status(const struct rcx *b, u8 i)
     status = (u8)((m & (RCX_MOTOR_ON | RCX_MOTOR_BRAKE)) | power);
     if (!((m ^ g) & RCX_MOTOR_FWD)) /* forward xor globally reversed */
         status |= RCX_MOTOR_FWD;
-    if (!(g & RCX_MOTOR_ON) && (m & RCX_MOTOR_ON))
+    if (m & ~g & RCX_MOTOR_ON) /* on, but globally disconnected */
         status = (u8)((status & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
     return status;
 }
@@ -53,7 +53,7 @@ static u8 wanted(const struct rcx *b, u8 i)
     if (!(g & RCX_MOTOR_ON))
         st = g;
     if (st & RCX_MOTOR_ON)
-        return APPLIED(st & RCX_MOTOR_FWD ? HAL_MOTOR_FWD : HAL_MOTOR_REV, st & RCX_MOTOR_POWER);
+        return (u8)((u8)(st << 2 & 0x1C) + HAL_MOTOR_REV + (st >> 3 & 1)); /* power << 2; FWD (bit 3) is REV + 1 */
     return (st & RCX_MOTOR_BRAKE) ? APPLIED(HAL_MOTOR_BRAKE, 7) : APPLIED(HAL_MOTOR_FLOAT, 0);
 }
 
@@ -70,7 +70,7 @@ static void apply(struct rcx *b, u8 i)
         if (DRIVEN(want))
             return;
         *pause = 0;
-    } else if (!(~(now ^ want) & 3) && DRIVEN(now)) { /* driven one way, now wanted the other */
+    } else if (!((u8)~(now ^ want) & 3) && DRIVEN(now)) { /* driven one way, now wanted the other */
         *pause = OUTPUTS_REVERSE_PAUSE_MS;
         want = APPLIED(HAL_MOTOR_BRAKE, 7);
     }

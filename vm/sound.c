@@ -42,11 +42,13 @@ RCX_STATIC_ASSERT(system_notes_as_counted, sizeof system_notes == 44); /* system
 static void enqueue(struct rcx *b, u16 hz, u8 len)
 {
     struct rcx_sound *s = &b->sound;
-    struct sound_entry *e = &s->queue[s->count];
-    if (s->count < SOUND_QUEUE) {
+    u8 n = s->count;
+    struct sound_entry *e = &s->queue[n];
+
+    if (n < SOUND_QUEUE) {
         e->hz = hz;
         e->len = len;
-        s->count++;
+        s->count = (u8)(n + 1);
     }
 }
 
@@ -74,9 +76,11 @@ void sound_system(struct rcx *b, u8 sound)
 /* Start a note of hz (each note, even at the pitch before), or silence (0) unless silent already. */
 static void play(struct rcx *b, u16 hz)
 {
-    if (hz || b->sound.sounding)
-        hal_sound(b, hz);
+    u16 was = b->sound.sounding;
+
     b->sound.sounding = hz;
+    if (hz || was)
+        hal_sound(b, hz);
 }
 
 void sound_clear(struct rcx *b)
