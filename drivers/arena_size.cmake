@@ -8,18 +8,8 @@
 #
 # Usage: cmake -DNM=<nm> -DPROBE=<probe image> -DPROBE_SIZE=<its arena> -DMARGIN=<bytes>
 #              -DHEADER=<header to write> -DSTAMP=<file to touch> -P arena_size.cmake
-execute_process(COMMAND "${NM}" "${PROBE}" OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "arena_size: ${NM} failed on ${PROBE}")
-endif()
-
-function(symbol_value name out)
-    if(NOT symbols MATCHES "([0-9a-fA-F]+) [A-Za-z] ${name}\n")
-        message(FATAL_ERROR "arena_size: symbol ${name} missing from ${PROBE}")
-    endif()
-    math(EXPR value "0x${CMAKE_MATCH_1} & 0xFFFF")
-    set(${out} ${value} PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/nm_symbols.cmake)
+nm_read_symbols("${NM}" "${PROBE}" arena_size)
 
 symbol_value(_rcx_bss_end bss_end)
 symbol_value(_rcx_ram_end ram_end)

@@ -6,18 +6,8 @@
 # .bss starts where it was loaded (crt0.s copies it away before clearing .bss), and the image's size counts it.
 #
 # Usage: cmake -DNM=<nm> -DIMAGE=<linked image> -P check_link.cmake
-execute_process(COMMAND "${NM}" "${IMAGE}" OUTPUT_VARIABLE symbols RESULT_VARIABLE rc)
-if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "check_link: ${NM} failed on ${IMAGE}")
-endif()
-
-function(symbol_value name out)
-    if(NOT symbols MATCHES "([0-9a-fA-F]+) [A-Za-z] ${name}\n")
-        message(FATAL_ERROR "check_link: symbol ${name} missing from ${IMAGE}")
-    endif()
-    math(EXPR value "0x${CMAKE_MATCH_1} & 0xFFFF")
-    set(${out} ${value} PARENT_SCOPE)
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/nm_symbols.cmake)
+nm_read_symbols("${NM}" "${IMAGE}" check_link)
 
 symbol_value(_rcx_image_base base)
 symbol_value(_rcx_image_end end)
