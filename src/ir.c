@@ -30,6 +30,7 @@ void ir_init(struct rcx_brick *k)
 {
     memset(&k->ir, 0, sizeof k->ir);
     k->ir.range = 0xFF; /* applied at the first ir_poll() */
+    k->ir.last_op = RCX_OP_MESSAGE;
 }
 
 static u8 sending(struct rcx_brick *k)
@@ -79,9 +80,11 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
             ir->echo--;
         return;
     }
-    ir->quiet = 0;
     st = ir->rx_state;
-    if (st >= IR_RX_READY) /* READY: hosts wait for the answer; DRAIN: the rest of an oversized block */
+    if (st == IR_RX_READY) /* hosts wait for the answer: noise now must not hold the reply back */
+        return;
+    ir->quiet = 0;
+    if (st == IR_RX_DRAIN) /* the rest of an oversized block */
         return;
     if (error) {
         ir->rx_state = IR_RX_IDLE;
@@ -176,10 +179,10 @@ static void execute(struct rcx_brick *k)
 
     ir->rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
-    if (!ir->have_last || op != ir->last_op) {
+    /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
+    if (op != ir->last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
         ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->reply);
         ir->last_op = op;
-        ir->have_last = 1;
         /* PBAliveOrNot "re-initialises the toggle bit" (spec p. 12): any packet after it is new anyway, since its
          * opcode differs, and a repeated ping is answered the same whether executed or not. */
     }
@@ -196,7 +199,7 @@ void ir_poll(struct rcx_brick *k)
     }
     if (ir->tx_pos >= ir->tx_total) {
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
-        if (ir->rx_state == IR_RX_READY) {
+        if (ir->rx_state == IR_RX_READY && ir->quiet >= IR_REPLY_MS) {
             execute(k);
             ir->tx_src = ir->reply;
             len = ir->reply_len;
@@ -206,11 +209,6 @@ void ir_poll(struct rcx_brick *k)
             /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
              * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
              * on. */
-            if (k->vm.remote.tx_msg) {
-                if (k->vm.remote.tx[0] == ir->last_msg)
-                    k->vm.remote.tx[0] ^= RCX_TOGGLE; /* a receiver must not take our new message for a repeat */
-                ir->last_msg = k->vm.remote.tx[0];
-            }
             ir->tx_src = k->vm.remote.tx;
             len = k->vm.remote.tx_len;
             ir->tx_pack = k->vm.remote.tx_pack;

@@ -20,6 +20,10 @@ struct rcx_brick;
 #define IR_QUIET_MS 30              /* silence inside a packet that resynchronises the receiver */
 #define IR_ECHO_MS 10               /* after transmitting, about two character times at 2400 baud for the echo */
 #define IR_SENSE_MS 10              /* silence before the machine's own transmission may start */
+/* A reply starts no sooner than 5 ms after the command's last byte (issue 9: a tower is blind while it sends and
+ * needs a moment after its last byte; firm0328 waits about 17 ms). `quiet` counts ticks, and the first may come
+ * right after the byte, so 6 ticks are at least 5 ms. */
+#define IR_REPLY_MS 6
 
 struct rcx_ir {
     /* Receiver. */
@@ -31,8 +35,8 @@ struct rcx_ir {
     u8 rx_need;         /* payload bytes of this packet, once the opcode (and a 0x45 length) told */
     u8 rx[IR_RX_MAX];   /* also the transmitter's chunk: nothing is received while the brick transmits */
 
-    /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed. */
-    u8 have_last;
+    /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed; IR messages
+     * (F7, FF) never are. Starts as F7, so that the first packet is always new. */
     u8 last_op;
     u8 reply_len;       /* 0: the last command has no reply */
     u8 reply[RCX_REPLY_MAX];
@@ -48,7 +52,6 @@ struct rcx_ir {
     u16 echo;           /* own bytes not heard back yet */
     u8 echo_quiet;      /* milliseconds since the transmitter went idle with echo outstanding */
     u8 range;           /* range last given to hal_ir_range() */
-    u8 last_msg;        /* opcode byte of the last IR message sent (F7 / FF alternate) */
 };
 
 /* Framing bits, as PackConf (source 33 byte 16, spec p. 9) names them. */

@@ -30,7 +30,6 @@ struct rcx_remote {
     u8 tx_len;      /* bytes of the waiting transmit request, 0 = none */
     u8 tx_pack;     /* framing: IR_PACK_* bits (src/ir.h), PackConf of source 33 */
     u8 tx_mode;     /* line: HAL_IR_* bits, UartConf of source 33 */
-    u8 tx_msg;      /* an IR message: the IR layer alternates its toggle bit */
     u8 tx[REMOTE_TX_MAX];
 };
 

@@ -43,10 +43,12 @@ void ticks(struct rig *r, unsigned ms)
         rt_tick(r->k);
 }
 
-/* Let the main loop run: what it transmits is collected and, unless `deaf`, heard back as the echo. */
+/* Let the main loop run: what it transmits is collected and, unless `deaf`, heard back as the echo. The brick
+ * answers a command only IR_REPLY_MS after its last byte, so that much time passes first. */
 void pump_echo(struct rig *r, int echo)
 {
     unsigned round;
+    ticks(r, IR_REPLY_MS);
     for (round = 0; round < 32; round++) {
         unsigned before = r->h->ir_len;
         rt_run(r->k, 0);

@@ -8,6 +8,15 @@ start_sim --tty "$T" --speed 20
 nqc_on "$T" -msg 7 || fail "-msg"
 expect "$(poll "$T" 15 0)" 7 "message after nqc -msg 7"
 
+# Two messages in a row from the PC, nothing in between (each nqc run sends F7): both are taken, as on firm0328
+# (reference-firmware.md), and a program waiting for the second one sees it.
+nqc_on "$T" -TRCX2 -d -pgm 5 "$E2E_DIR/two_messages.nqc" -run >/dev/null || fail "download two_messages"
+nqc_on "$T" -msg 42 || fail "-msg 42"
+nqc_on "$T" -msg 200 || fail "-msg 200"
+wait_poll "$T" 0 0 2 "the program waiting for message 200"
+expect "$(poll "$T" 15 0)" 200 "message after nqc -msg 42, nqc -msg 200"
+nqc_on "$T" -pgm 1 >/dev/null || fail "back to slot 1"
+
 # PB message 2 (high byte 02). nqc sends no ping before -remote: the polls in between end the repeat.
 nqc_on "$T" -remote 0200 1 || fail "-remote message"
 expect "$(poll "$T" 15 0)" 2 "message after the remote's message 2"

@@ -209,17 +209,63 @@ static void repeats_of_unanswered_commands_stay_silent(void **state)
 {
     struct rig *r = rig_new();
     (void)state;
-    assert_int_equal(TX(r, 0xF7, 0x05), 0);
-    assert_int_equal(r->k->vm.message, 5);
-    assert_int_equal(TX(r, 0xF7, 0x09), 0); /* same opcode byte: a repeat */
-    assert_int_equal(r->k->vm.message, 5);
-    assert_int_equal(TX(r, 0xFF, 0x09), 0);
-    assert_int_equal(r->k->vm.message, 9);
+    assert_int_equal(TX(r, 0xD2, 0x00, 0x08), 0);  /* RemoteCommand: A forward */
+    assert_int_equal(TX(r, 0xD2, 0x00, 0x00), 0);  /* same opcode byte: a repeat, A keeps running */
+    assert_int_equal(r->k->vm.remote.held, 0x0800);
     /* An unanswered command ends the repeat of an answered one. */
     assert_int_equal(TX(r, 0x24, 0x01, 0x02, 0x01, 0x00), 7);
     assert_int_equal(TX(r, 0xF7, 0x01), 0);
     assert_int_equal(TX(r, 0x24, 0x01, 0x02, 0x01, 0x00), 7);
     assert_int_equal(poll_var(r, 1), 2);
+    rig_free(r);
+}
+
+/* reference-firmware.md: two messages in a row are both taken (nqc -msg 42, then nqc -msg 200: each run sends F7),
+ * whether or not anything came in between, and a message ends the repeat of the command before it. */
+static void messages_are_never_repeats(void **state)
+{
+    struct rig *r = rig_new();
+    (void)state;
+    assert_int_equal(TX(r, 0xF7, 42), 0);
+    assert_int_equal(r->k->vm.message, 42);
+    assert_int_equal(TX(r, 0xF7, 200), 0);
+    assert_int_equal(r->k->vm.message, 200);
+    assert_int_equal(TX(r, 0xFF, 7), 0);
+    assert_int_equal(r->k->vm.message, 7);
+    assert_int_equal(TX(r, 0xFF, 9), 0);
+    assert_int_equal(r->k->vm.message, 9);
+    assert_int_equal(TX(r, 0xF7, 9), 0);      /* even the same message again */
+    assert_int_equal(r->k->vm.message, 9);
+    rig_free(r);
+}
+
+/* Issue 9: the reply starts no sooner than 5 ms after the command's last byte, and well before firm0328's 17 ms. */
+static void the_reply_waits_5_ms_after_the_last_byte(void **state)
+{
+    static const u8 ping[] = { 0x55, 0xFF, 0x00, 0x10, 0xEF, 0x10, 0xEF };
+    struct rig *r = rig_new();
+    unsigned ms;
+    (void)state;
+    feed(r, ping, sizeof ping);
+    /* The first tick may come at any moment after the last byte: after n ticks, n - 1 ms have surely passed. */
+    for (ms = 0; ms <= 5; ms++) {
+        rt_run(r->k, 0);
+        assert_int_equal(r->h->ir_len, 0);
+        rt_tick(r->k);
+    }
+    rt_run(r->k, 0);                          /* 6 ticks: at least 5 ms */
+    assert_int_equal(r->h->ir_len, 7);
+    /* Noise while the answer waits does not hold it back. */
+    r->h->ir_len = 0;
+    ticks(r, IR_ECHO_MS + 1);                 /* the echo never came: the receiver listens again */
+    feed(r, (const u8[]){ 0x55, 0xFF, 0x00, 0x18, 0xE7, 0x18, 0xE7 }, 7);
+    for (ms = 0; ms < IR_REPLY_MS; ms++) {
+        rt_ir_byte(r->k, 0x3C, 0);
+        rt_tick(r->k);
+    }
+    rt_run(r->k, 0);
+    assert_int_equal(r->h->ir_len, 7);
+    assert_int_equal(r->h->ir[3], 0xE7);
     rig_free(r);
 }
 
@@ -234,6 +280,7 @@ static void the_memory_map_goes_out_in_pieces(void **state)
     assert_int_equal(want[0], 0xDF);
     n = frame((const u8[]){ 0x20 }, 1, pkt);
     feed(r, pkt, n);
+    ticks(r, IR_REPLY_MS);
     r->out_len = 0;
     /* While the driver is busy nothing more is handed over. */
     while (handed < 383 && rounds++ < 100) {
@@ -303,7 +350,7 @@ static void garbage_never_hangs_the_receiver(void **state)
 
 /* ---- what the machine asks to transmit ---- */
 
-static void a_program_message_goes_out_with_alternating_toggle(void **state)
+static void a_program_message_always_goes_out_as_f7(void **state)
 {
     struct rig *r = rig_new();
     u8 code[] = { 0xB2, 0x02, 0x07, 0xB2, 0x02, 0x09 }; /* SendPBMessage 7, then 9 */
@@ -319,7 +366,7 @@ static void a_program_message_goes_out_with_alternating_toggle(void **state)
     rt_run(r->k, 1);
     r->out_len = 0;
     pump(r);
-    REPLY(r, 0xFF, 0x09);          /* bit 3 flipped: a receiver must not take it for a repeat */
+    REPLY(r, 0xF7, 0x09);          /* as every brick sends it: receivers never take a message for a repeat */
     rig_free(r);
 }
 
@@ -410,10 +457,12 @@ int main(void)
         cmocka_unit_test(a_lost_echo_does_not_deafen_the_receiver),
         cmocka_unit_test(a_repeated_opcode_is_answered_not_executed),
         cmocka_unit_test(repeats_of_unanswered_commands_stay_silent),
+        cmocka_unit_test(messages_are_never_repeats),
+        cmocka_unit_test(the_reply_waits_5_ms_after_the_last_byte),
         cmocka_unit_test(the_memory_map_goes_out_in_pieces),
         cmocka_unit_test(oversized_blocks_are_drained_and_forgotten),
         cmocka_unit_test(garbage_never_hangs_the_receiver),
-        cmocka_unit_test(a_program_message_goes_out_with_alternating_toggle),
+        cmocka_unit_test(a_program_message_always_goes_out_as_f7),
         cmocka_unit_test(uart_data_follows_packconf_and_uartconf),
         cmocka_unit_test(boot_mode_waits_for_its_acknowledgement),
         cmocka_unit_test(range_commands_reach_the_driver),
