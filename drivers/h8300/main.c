@@ -132,7 +132,7 @@ static inline u16 ad_raw10(u16 addr)
 /* The scans completed since the last call, oldest first, as one sample per input per millisecond. */
 static void feed_samples(void)
 {
-    static u16 s[4] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
+    static u16 s[4] RCX_ONCHIP; /* the scan being fed (raw10), copied out of reach of the interrupt */
     u16 *p;
     u8 i;
 
@@ -146,15 +146,15 @@ static void feed_samples(void)
         i = 4;
         h8_irq_disable();
         do
-            *p++ = *slot++;
+            *p++ = ad_raw10(*slot++);
         while (--i);
         h8_irq_enable();
         ad_seen += AD_SLOT;
         p = &s[hw_ad_channel(0)];
         for (i = 0; i < 3; i++)
-            rt_sensor_sample(&brick, i, ad_raw10(*p--));
+            rt_sensor_sample(&brick, i, *p--);
         /* The battery is averaged over 64 ms: steadier, and one conversion to millivolts instead of 64. */
-        battery_sum += ad_raw10(s[HW_AD_BATTERY]);
+        battery_sum += s[HW_AD_BATTERY];
         if (++battery_count == 64) {
             rt_battery(&brick, hw_battery_mv(battery_sum >> 6));
             battery_sum = 0;

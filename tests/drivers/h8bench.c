@@ -92,8 +92,16 @@ static int poll_var(struct h8machine *m, uint8_t v, unsigned long long *latency)
 {
     uint8_t poll[3] = { 0x12, 0x00, 0 }, reply[3];
     poll[2] = v;
-    if (h8m_transact(m, poll, sizeof poll, reply, 3, latency))
+    if (h8m_transact(m, poll, sizeof poll, reply, 3, latency)) {
+        fprintf(stderr, "h8bench: no reply to Poll %u (%s)\n", v, m->h.error);
+        if (getenv("H8BENCH_DEBUG")) {
+            unsigned i;
+            for (i = m->nsent > 40 ? m->nsent - 40 : 0; i < m->nsent; i++)
+                fprintf(stderr, " %02x@%.1f", m->sent[i], m->sent_at[i] / 16000.0);
+            fprintf(stderr, "\nnow %.1f ms\n", m->h.states / 16000.0);
+        }
         return -99999;
+    }
     return (int16_t)(reply[1] | reply[2] << 8);
 }
 

@@ -50,9 +50,13 @@ static void tx_start(struct h8machine *m)
     }
 }
 
+static uint8_t ssr_read; /* SSR flags read as 1: only those can be cleared by writing 0 */
+
 static uint8_t io_read(struct h8 *h, uint16_t a, uint8_t held)
 {
     (void)h;
+    if (a == SCI_SSR)
+        ssr_read |= held;
     if (a == P4DR)
         return (uint8_t)(held | 0x06); /* On-Off and Run released */
     if (a == P7PIN)
@@ -69,8 +73,14 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
         m->tick_at = h->states + 32ull * (h8_read16(h, FRT_OCR) + 1u); /* φ/32, cleared at the match */
     else if (a == AD_ADCSR)
         m->ad_at = now & ADST ? (m->ad_at ? m->ad_at : h->states + AD_SCAN_STATES) : 0;
-    else if (a == SCI_SSR && (was & TDRE) && !(now & TDRE) && !m->tx_at)
-        tx_start(m); /* TDR written: into the shift register at once when it is free */
+    else if (a == SCI_SSR) {
+        /* A flag is cleared by writing 0 after reading it as 1; software cannot set one (flags: bits 7-3). */
+        now = (uint8_t)((was & 0xF8 & ~(ssr_read & ~now)) | (was & 0x06) | (now & 0x01)); /* TEND, MPB read-only */
+        h->mem[a] = now;
+        ssr_read = 0;
+        if ((was & TDRE) && !(now & TDRE) && !m->tx_at)
+            tx_start(m); /* TDR written: into the shift register at once when it is free */
+    }
 }
 
 static void receive_due(struct h8machine *m)
@@ -231,11 +241,18 @@ int h8m_reply(struct h8machine *m, unsigned from, unsigned len, uint8_t *reply, 
     unsigned long long end = m->h.states + limit;
 
     while (m->nsent < from + total || m->tx_at) {
-        if (m->h.states >= end || h8m_run(m, m->h.states + H8M_MS / 4))
+        if (m->h.states >= end || h8m_run(m, m->h.states + H8M_MS / 4)) {
+            fprintf(stderr, "reply: timeout? %llu %llu from %u nsent %u\n", m->h.states, end, from, m->nsent);
             return -1;
+        }
     }
-    if (m->sent[from] != 0x55 || m->sent[from + 1] != 0xFF || m->sent[from + 2] != 0x00)
+    if (m->sent[from] != 0x55 || m->sent[from + 1] != 0xFF || m->sent[from + 2] != 0x00) {
+        fprintf(stderr, "reply: header at %u, nsent %u:", from, m->nsent);
+        for (i = from; i < m->nsent; i++)
+            fprintf(stderr, " %02x", m->sent[i]);
+        fprintf(stderr, "\n");
         return -1;
+    }
     for (i = 0; i <= len; i++) {
         uint8_t b = m->sent[from + 3 + 2 * i];
         if ((m->sent[from + 4 + 2 * i] ^ b) != 0xFF)
