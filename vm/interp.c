@@ -287,35 +287,34 @@ leave:
         return 0;
 slow:
     run_slow(b, n, at);
-    if (!--count || b->runmask != mask)
+    if (!--count || b->runmask != mask || b->yield)
         return count;
     goto next;
 }
+
+/* Bit n of a task mask: a table, since a shift by a variable count is a loop on the H8/300. */
+static const u16 bit_of[RCX_TASKS] = { 1, 2, 4, 8, 16, 32, 64, 128, 256, 512 };
 
 u16 vm_run(struct rcx *b, u16 budget)
 {
     u16 left = budget, mask;
     u8 n = b->rr, count;
 
-    while (left && (mask = b->runmask) != 0) {
-        u16 m;
+    while (left && (mask = b->runmask) != 0 && !b->yield) {
         count = 1;
         if (!(mask & (u16)(mask - 1u))) {
-            /* The only running task runs on: the scheduler would pick it every time (up to 255 at once). */
+            /* The only running task runs on: the scheduler would pick it every time (a chunk at once). */
             n = 0;
-            count = (left >> 8) ? 255 : (u8)left;
+            count = left > RCX_RUN_CHUNK ? RCX_RUN_CHUNK : (u8)left;
         }
-        if ((m = (u16)(mask >> n)) == 0) { /* wrap around: the next pass starts at task 0 */
-            n = 0;
-            m = mask;
-        }
-        while (!(m & 1)) {
-            m >>= 1;
-            n++;
+        for (;; n++) {
+            if (n >= RCX_TASKS)
+                n = 0;                 /* wrap around: the next pass starts at task 0 */
+            if (mask & bit_of[n])
+                break;
         }
         left = (u16)(left - count + run_task(b, n, count));
-        if (++n >= RCX_TASKS)
-            n = 0;
+        n++;
     }
     b->rr = n;
     return (u16)(budget - left);

@@ -68,6 +68,7 @@ struct rcx {
     u8 prog;        /* selected program slot, source 8 */
     u8 rr;          /* next task the round-robin scheduler visits */
     u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
+    volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
     s16 global[RCX_GLOBALS];
     struct rcx_task task[RCX_TASKS];
 
@@ -111,7 +112,9 @@ void vm_init(struct rcx *b, u16 arena_addr);
 void vm_tick(struct rcx *b);
 
 /* Execute up to `budget` byte codes, one per running task in turn; returns how many were executed (a task reaching
- * the end of its code counts as one). */
+ * the end of its code counts as one). Returns early once `yield` is set: it is checked at least every
+ * RCX_RUN_CHUNK byte codes, so a port can pass a budget as large as it likes and still get its turn. */
+#define RCX_RUN_CHUNK 40 /* x++ at full speed: 0.7 ms of the brick */
 u16 vm_run(struct rcx *b, u16 budget);
 
 /* Execute one direct command (`len` bytes from the opcode, toggle bit as received). Writes the reply into

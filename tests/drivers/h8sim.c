@@ -26,13 +26,18 @@ static enum region region(uint16_t a)
 static uint8_t rd8(struct h8 *h, uint16_t a)
 {
     h->states += region(a) == ONCHIP ? 2 : 3;
+    if (h->io_read && a >= 0xFF88)
+        return h->io_read(h, a, h->mem[a]);
     return h->mem[a];
 }
 
 static void wr8(struct h8 *h, uint16_t a, uint8_t v)
 {
+    uint8_t was = h->mem[a];
     h->states += region(a) == ONCHIP ? 2 : 3;
     h->mem[a] = v;
+    if (h->io_write && a >= 0xFF88)
+        h->io_write(h, a, was);
 }
 
 static int aligned(struct h8 *h, uint16_t a)
@@ -53,20 +58,26 @@ void h8_write16(struct h8 *h, uint16_t a, uint16_t v)
     h->mem[(uint16_t)(a + 1)] = (uint8_t)v;
 }
 
+/* A word on an 8-bit bus (external RAM, the register field) is two byte accesses. */
 static uint16_t rd16(struct h8 *h, uint16_t a)
 {
-    enum region r = region(a);
-    h->states += r == EXTERNAL ? 6 : r == IO ? 3 : 2;
+    h->states += region(a) == ONCHIP ? 2 : 6;
     aligned(h, a);
+    if (h->io_read && a >= 0xFF88)
+        return (uint16_t)(h->io_read(h, a, h->mem[a]) << 8 | h->io_read(h, (uint16_t)(a + 1), h->mem[(uint16_t)(a + 1)]));
     return h8_read16(h, a);
 }
 
 static void wr16(struct h8 *h, uint16_t a, uint16_t v)
 {
-    enum region r = region(a);
-    h->states += r == EXTERNAL ? 6 : r == IO ? 3 : 2;
+    uint8_t was = h->mem[a], was1 = h->mem[(uint16_t)(a + 1)];
+    h->states += region(a) == ONCHIP ? 2 : 6;
     aligned(h, a);
     h8_write16(h, a, v);
+    if (h->io_write && a >= 0xFF88) {
+        h->io_write(h, a, was);
+        h->io_write(h, (uint16_t)(a + 1), was1);
+    }
 }
 
 static uint16_t fetch(struct h8 *h)
@@ -267,8 +278,12 @@ int h8_step(struct h8 *h)
     case 0x01:
         if (lo != 0x80)
             return unknown(h, at, w);
-        snprintf(h->error, sizeof h->error, "SLEEP at %04X", at);
-        return -1;
+        if (!h->may_sleep) {
+            snprintf(h->error, sizeof h->error, "SLEEP at %04X", at);
+            return -1;
+        }
+        h->asleep = 1; /* until an interrupt: the caller's to model */
+        return 0;
     case 0x02: wb(h, lo4, h->ccr); return 0;
     case 0x03: h->ccr = rb(h, lo4); return 0;
     case 0x04: h->ccr |= (uint8_t)lo; return 0;
@@ -444,6 +459,22 @@ int h8_step(struct h8 *h)
     default:
         return unknown(h, at, w);
     }
+}
+
+/* Interrupt exception handling: PC and CCR pushed (a word each, CCR in both bytes), I set, the vector read from
+ * on-chip ROM, then the fetch at the handler. About 14 states with the stack on-chip, as on the RCX. */
+void h8_interrupt(struct h8 *h, uint16_t handler)
+{
+    h->r[7] = (uint16_t)(h->r[7] - 2);
+    wr16(h, h->r[7], h->pc);
+    h->r[7] = (uint16_t)(h->r[7] - 2);
+    wr16(h, h->r[7], (uint16_t)(h->ccr << 8 | h->ccr));
+    h->ccr |= F_I;
+    h->states += 2 + 4; /* the vector, internal states */
+    h->pc = handler;
+    prefetch(h);
+    prefetch(h);
+    h->asleep = 0;
 }
 
 void h8_reset(struct h8 *h)

@@ -5,10 +5,11 @@
  *
  * Timing model (after the H8/300 manual's scheme: states = instruction words fetched, data accesses and internal
  * states): every access costs what its address costs on the RCX (rcx-hardware.md 1.1): external RAM on the 8-bit
- * bus 3 states per byte, so 6 per instruction word or data word; on-chip RAM and ROM 2 per access; on-chip
- * registers 3. A taken or untaken branch, a jump, call or return fetches one more word where it continues.
+ * bus 3 states per byte, so 6 per instruction word or data word; on-chip RAM and ROM 2 per access (byte or word); the
+ * on-chip registers 3 per byte, 6 per word (their field has an 8-bit bus too). A taken or untaken branch, a jump, call or return fetches one more word where it continues.
  * Internal states: 2 for jsr/jmp to an absolute address, returns, pushes and pops, 12 for mulxu and divxu.
- * Wait states: none. Interrupts are not simulated.
+ * Wait states: none. Interrupts are taken when a caller says so (h8_interrupt); h8machine.h models the peripherals
+ * that request them.
  */
 #ifndef H8SIM_H
 #define H8SIM_H
@@ -24,11 +25,18 @@ struct h8 {
     char error[160];        /* set when the simulator stopped on something it cannot run */
     /* Called after each instruction with its address and the states it took (profiles), if set. */
     void (*trace)(struct h8 *h, uint16_t pc, unsigned states);
+    /* Peripherals (h8machine.h), if set: what a read of register `a` (FF88-FFFF) returns, given what memory
+     * holds; and a register just written (its old value `was`, the new one in mem). */
+    uint8_t (*io_read)(struct h8 *h, uint16_t a, uint8_t held);
+    void (*io_write)(struct h8 *h, uint16_t a, uint8_t was);
+    int may_sleep;          /* SLEEP sets asleep (for the caller to wake) instead of stopping with an error */
+    int asleep;
 };
 
 void h8_reset(struct h8 *h);
 int h8_load_srec(struct h8 *h, const char *path);            /* 0 on success */
 int h8_step(struct h8 *h);                                    /* 0 ok, -1 stopped (error set) */
+void h8_interrupt(struct h8 *h, uint16_t handler);            /* the CPU's interrupt exception, to `handler` */
 /* Call the function at `addr` with r0-r2 as gcc passes its first arguments and `nstack` words pushed after
  * them (stack[0] nearest the return address); runs until it returns, at most `max_insns`. Returns r0, or -1 in
  * h->error set on failure. */

@@ -1,0 +1,59 @@
+/*
+ * The whole brick around the simulated CPU (h8sim.h): the image's main() runs with the peripherals the firmware
+ * uses, so that time, interrupts and sleep are the image's own. Modelled: the FRT compare match A (the tick), the
+ * A/D scan of AN0-AN3, the SCI at 2400 Bd 8O1 with the brick hearing its own transmission, SLEEP until the next
+ * interrupt, and the ROM's interrupt entry (push r6, call the RAM vector, pop r6, rte: rcx-hardware.md §6) as code
+ * of its own in the on-chip ROM's place. Buttons read as released. Everything else reads back what was written.
+ */
+#ifndef H8MACHINE_H
+#define H8MACHINE_H
+
+#include "h8sim.h"
+
+#define H8M_CLOCK 16000000ull
+#define H8M_MS (H8M_CLOCK / 1000)
+#define H8M_BYTE (H8M_CLOCK * 11 / 2400) /* start, 8 data, parity, stop */
+#define H8M_RX 512
+#define H8M_TX 4096
+
+struct h8machine {
+    struct h8 h;
+    unsigned long long tick_at;             /* the next compare match, 0 while the FRT is not set up */
+    unsigned long long ad_at;               /* the end of the running scan, 0 if none */
+    uint16_t ad_raw[4];                     /* raw10 of AN0-AN3 (inputs 3, 2, 1, battery) */
+    void (*ad_input)(struct h8machine *m);  /* if set, called as each scan ends, before its results are stored */
+    unsigned long long tx_at;               /* the end of the byte being sent, 0 if the transmitter is idle */
+    uint8_t tx_byte;
+    unsigned long long rx_at[H8M_RX];       /* bytes to receive, at the end of their frame */
+    uint8_t rx_byte[H8M_RX];
+    unsigned rx_head, rx_tail;
+    uint8_t sent[H8M_TX];                   /* every byte sent, and when its transmission started */
+    unsigned long long sent_at[H8M_TX];
+    unsigned nsent;
+    unsigned long long slept;               /* states spent in SLEEP */
+    unsigned long long ms_seen;             /* compare matches so far */
+    uint8_t last_op;                        /* the host's last opcode, for its toggle bit */
+};
+
+/* Load the image, run its start-up code, reset the peripherals; main() is next. 0 on success. */
+int h8m_boot(struct h8machine *m, const char *image, const char *nm);
+/* Run until h.states reaches `until`. 0, or -1 with h.error set. */
+int h8m_run(struct h8machine *m, unsigned long long until);
+/* Queue bytes from the host's IR tower, the first received at `at` (or as soon as the last queued one). */
+void h8m_receive(struct h8machine *m, const uint8_t *bytes, unsigned n, unsigned long long at);
+/* A command as a packet (55 FF 00, each byte and its complement, the sum and its complement), received from now on.
+ * Returns when its last byte is received. */
+unsigned long long h8m_command(struct h8machine *m, const uint8_t *cmd, unsigned n);
+/* Run until the brick has sent a reply of `len` bytes (opcode included) starting at sent[from], and its last byte
+ * has left, at most `limit` states from now. The reply's bytes go to `reply` (if not NULL). 0, or -1 on timeout or
+ * a malformed reply. */
+int h8m_reply(struct h8machine *m, unsigned from, unsigned len, uint8_t *reply, unsigned long long limit);
+/* h8m_command, then h8m_reply; the states from the command's last byte to the start of the reply's first in
+ * `latency` (if not NULL). 0 or -1. */
+int h8m_transact(struct h8machine *m, const uint8_t *cmd, unsigned n, uint8_t *reply, unsigned len,
+                 unsigned long long *latency);
+/* Download `code` as task n (BeginOfTask, one ContinueDL block) the way nqc does, each command waiting for its reply;
+ * opcodes alternate their toggle bit as a host's repeats must. 0 on success (both replies 0). */
+int h8m_download_task(struct h8machine *m, uint8_t n, const uint8_t *code, unsigned len);
+
+#endif
