@@ -8,7 +8,9 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
 # command-or-file:debian-package
 HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc firmdl3:brickos \
-               /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev
+               /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
+               /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
+               /usr/lib/python3/dist-packages/selenium:python3-selenium
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
