@@ -102,18 +102,35 @@ void panel_sync(struct panel *p, struct sim *s)
 
 /* ---- HTTP threads ---- */
 
-static enum MHD_Result send_text(struct MHD_Connection *c, unsigned status, const char *type, const char *text)
+/* Queues a response (NULL: it could not be made, the connection is dropped) and lets go of it. */
+static enum MHD_Result respond(struct MHD_Connection *c, unsigned status, struct MHD_Response *r, const char *type,
+                               const char *cache)
 {
-    struct MHD_Response *r = MHD_create_response_from_buffer(strlen(text), (void *)text, MHD_RESPMEM_MUST_COPY);
     enum MHD_Result ok;
 
     if (!r)
         return MHD_NO;
     MHD_add_response_header(r, "Content-Type", type);
-    MHD_add_response_header(r, "Cache-Control", "no-store");
+    MHD_add_response_header(r, "Cache-Control", cache);
     ok = MHD_queue_response(c, status, r);
     MHD_destroy_response(r);
     return ok;
+}
+
+/* A malloc'ed body, freed whatever happens. */
+static enum MHD_Result send_buffer(struct MHD_Connection *c, char *data, size_t len, const char *type,
+                                   const char *cache)
+{
+    struct MHD_Response *r = MHD_create_response_from_buffer(len, data, MHD_RESPMEM_MUST_FREE);
+    if (!r)
+        free(data);
+    return respond(c, MHD_HTTP_OK, r, type, cache);
+}
+
+static enum MHD_Result send_text(struct MHD_Connection *c, unsigned status, const char *type, const char *text)
+{
+    struct MHD_Response *r = MHD_create_response_from_buffer(strlen(text), (void *)text, MHD_RESPMEM_MUST_COPY);
+    return respond(c, status, r, type, "no-store");
 }
 
 /* A refusal: the status and a one-line reason. */
@@ -130,8 +147,6 @@ static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, con
     FILE *f;
     char *data;
     size_t n;
-    struct MHD_Response *r;
-    enum MHD_Result ok;
 
     snprintf(path, sizeof path, "%s/%s", RCXSIM_PANEL_FILES, name);
     f = fopen(path, "rb");
@@ -142,24 +157,13 @@ static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, con
     fclose(f);
     if (!data)
         return MHD_NO;
-    r = MHD_create_response_from_buffer(n, data, MHD_RESPMEM_MUST_FREE);
-    if (!r) {
-        free(data);
-        return MHD_NO;
-    }
-    MHD_add_response_header(r, "Content-Type", type);
-    MHD_add_response_header(r, "Cache-Control", "no-cache");
-    ok = MHD_queue_response(c, MHD_HTTP_OK, r);
-    MHD_destroy_response(r);
-    return ok;
+    return send_buffer(c, data, n, type, "no-cache");
 }
 
 static enum MHD_Result send_state(struct panel *p, struct MHD_Connection *c)
 {
     char *json = malloc(PANEL_JSON_MAX);
     size_t len;
-    struct MHD_Response *r;
-    enum MHD_Result ok;
 
     if (!json)
         return MHD_NO;
@@ -170,16 +174,7 @@ static enum MHD_Result send_state(struct panel *p, struct MHD_Connection *c)
         free(json);
         return refuse(c, MHD_HTTP_INTERNAL_SERVER_ERROR, "state too large");
     }
-    r = MHD_create_response_from_buffer(len, json, MHD_RESPMEM_MUST_FREE);
-    if (!r) {
-        free(json);
-        return MHD_NO;
-    }
-    MHD_add_response_header(r, "Content-Type", "application/json");
-    MHD_add_response_header(r, "Cache-Control", "no-store");
-    ok = MHD_queue_response(c, MHD_HTTP_OK, r);
-    MHD_destroy_response(r);
-    return ok;
+    return send_buffer(c, json, len, "application/json", "no-store");
 }
 
 /* One page's event stream: a snapshot each time it changes (at most every EVENT_GAP_MS), comments in between. */
@@ -264,7 +259,6 @@ static enum MHD_Result send_events(struct panel *p, struct MHD_Connection *c)
 {
     struct stream *st = calloc(1, sizeof *st);
     struct MHD_Response *r;
-    enum MHD_Result ok;
 
     if (!st)
         return MHD_NO;
@@ -272,15 +266,9 @@ static enum MHD_Result send_events(struct panel *p, struct MHD_Connection *c)
     strcpy(st->buf, "retry: 1000\n\n"); /* a page that loses the stream comes back after a second */
     st->len = strlen(st->buf);
     r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 4096, stream_read, st, free);
-    if (!r) {
+    if (!r)
         free(st);
-        return MHD_NO;
-    }
-    MHD_add_response_header(r, "Content-Type", "text/event-stream");
-    MHD_add_response_header(r, "Cache-Control", "no-store");
-    ok = MHD_queue_response(c, MHD_HTTP_OK, r);
-    MHD_destroy_response(r);
-    return ok;
+    return respond(c, MHD_HTTP_OK, r, "text/event-stream", "no-store");
 }
 
 /* The query must hold only the names given, each at most once. */

@@ -5,6 +5,7 @@ Every wait is bounded, and the simulator is stopped (by its own pid) however a t
 import ctypes
 import http.client
 import json
+import shutil
 import signal
 import os
 import subprocess
@@ -109,10 +110,15 @@ class Sim:
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, kind, value, tb):
         if self.proc.poll() is None:
             self.proc.kill()
             self.proc.wait()
+        if not self.err.closed:
+            self.err.close()
+        if kind is not None:
+            sys.stderr.write("--- rcxsim's messages:\n" + open(self.err_path).read())
+        shutil.rmtree(self.work, ignore_errors=True)
 
 
 def nqc_compile(source, out):

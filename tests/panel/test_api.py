@@ -1,10 +1,11 @@
 """rcxsim --panel over HTTP: GET /state, inputs by POST and what they do to a running program, the event stream,
 and every kind of bad request (each refused with a 4xx and a one-line reason, the simulator unharmed)."""
 import json
+import os
 import re
+import shutil
 import socket
-import sys
-import time
+import tempfile
 
 from panel_lib import Sim, check, fail, nqc_compile, wait_for
 
@@ -200,9 +201,8 @@ def test_bricks():
 
 
 def main():
-    with Sim() as probe:
-        rcx = nqc_compile("touch.nqc", probe.path("touch.rcx"))
-        probe.stop()
+    scratch = tempfile.mkdtemp(prefix="panel.", dir=os.environ.get("PANEL_TMP"))
+    rcx = nqc_compile("touch.nqc", os.path.join(scratch, "touch.rcx"))
     with Sim("--load", rcx) as sim:
         test_pages(sim)
         test_refusals(sim)
@@ -214,6 +214,7 @@ def main():
         check(took < 3, "rcxsim took %.1f s to stop with a page open" % took)
         check(sim.proc.returncode == 0, "rcxsim exit status %d" % sim.proc.returncode)
         stream.close()
+    shutil.rmtree(scratch)
     test_bricks()
     print("panel API: ok")
 

@@ -69,7 +69,8 @@ def browser():
 def main():
     shots = sys.argv[1]
     os.makedirs(shots, exist_ok=True)
-    tty = os.path.join(tempfile.mkdtemp(prefix="panel.", dir=os.environ.get("PANEL_TMP")), "rcx")
+    tty_dir = tempfile.mkdtemp(prefix="panel.", dir=os.environ.get("PANEL_TMP"))
+    tty = os.path.join(tty_dir, "rcx")
     with Sim("--tty", tty) as sim:
         wait_for("the tower " + tty, lambda: os.path.exists(tty))
         subprocess.run([NQC, "-S" + tty, "-TRCX2", "-d", "-pgm", str(SLOT), os.path.join(HERE, "forward.nqc"),
@@ -102,6 +103,7 @@ def main():
         finally:
             driver.quit()
         check(sim.stop() < 3, "rcxsim stopped")
+    os.rmdir(tty_dir)  # rcxsim removed its link
     print("panel in Chromium: ok, screenshots in " + shots)
 
 
