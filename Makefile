@@ -61,7 +61,8 @@ fuzz: asan
 bench: host firmware deps-bench
 	@for s in tests/bench/*.sh; do sh "$$s" $(HOST_DIR) $(TARGET_DIR) || exit 1; done
 
-# The virtual RCX demo: a sample program downloaded by nqc over the pseudo-terminal, its trace on the terminal.
+# The virtual RCX demo: a sample program downloaded by nqc over the pseudo-terminal, its trace on the terminal, the
+# brick live in the browser (the URL is printed; PANEL_PORT=N for another port than 8330) until Ctrl-C.
 run: host
 	sh host_sim/demo.sh $(HOST_DIR)
 

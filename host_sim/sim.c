@@ -311,20 +311,21 @@ int main(int argc, char **argv)
         s->brick[i] = new_brick(s, i, rom);
     for (i = 0; i < nloads && status == 0; i++)
         status = load_image(s, loads[i]);
-    for (i = 0; i < nttys && status == 0; i++) {
-        if (tower_open(s, &s->tower[i], ttys[i], s->brick[i])) {
-            fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
-            status = 1;
-        } else {
-            s->ntowers++;
-        }
-    }
+    /* The panel first: once a tower's link exists, everything is up. */
     if (status == 0 && panel_port >= 0) {
         char err[256];
         s->panel = panel_start(s, panel_bind, (unsigned)panel_port, err, sizeof err);
         if (!s->panel) {
             fprintf(stderr, "rcxsim: --panel %ld: %s\n", panel_port, err);
             status = 1;
+        }
+    }
+    for (i = 0; i < nttys && status == 0; i++) {
+        if (tower_open(s, &s->tower[i], ttys[i], s->brick[i])) {
+            fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
+            status = 1;
+        } else {
+            s->ntowers++;
         }
     }
     if (status == 0)

@@ -66,7 +66,8 @@ function holdable(el, send) {
 function noteName(hz) {
     const n = Math.round(12 * Math.log2(hz / 440) + 69);
     const cents = Math.round(1200 * Math.log2(hz / (440 * Math.pow(2, (n - 69) / 12))));
-    return NOTE_NAMES[((n % 12) + 12) % 12] + (Math.floor(n / 12) - 1) + (cents ? ` ${cents > 0 ? "+" : ""}${cents}¢` : "");
+    const off = Math.abs(cents) >= 5 ? ` ${cents > 0 ? "+" : ""}${cents}¢` : ""; // closer is in tune to the ear
+    return NOTE_NAMES[((n % 12) + 12) % 12] + (Math.floor(n / 12) - 1) + off;
 }
 
 function fromTemplate(id) {
