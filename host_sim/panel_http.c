@@ -376,6 +376,7 @@ static enum MHD_Result route(void *cls, struct MHD_Connection *c, const char *ur
     struct panel *p = cls;
     int get = strcmp(method, "GET") == 0 || strcmp(method, "HEAD") == 0, post = strcmp(method, "POST") == 0;
     const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Content-Length");
+    const char *chunked = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Transfer-Encoding");
     size_t i;
 
     (void)version;
@@ -383,7 +384,7 @@ static enum MHD_Result route(void *cls, struct MHD_Connection *c, const char *ur
     if (*req == NULL) {
         *req = &headers_seen;
         /* Nothing here takes a body: refuse it before it is read. */
-        if ((length && strcmp(length, "0") != 0) || MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Transfer-Encoding"))
+        if ((length && strcmp(length, "0") != 0) || chunked)
             return refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, "no request body expected: parameters go in the query");
         return MHD_YES;
     }

@@ -6,6 +6,7 @@
 const TOUCH_PRESSED_RAW = 60;   // a pressed touch sensor pulls the input low...
 const TOUCH_RELEASED_RAW = 1023; // ...a released one leaves it at the pull-up
 const NOTE_NAMES = ["C", "C♯", "D", "D♯", "E", "F", "F♯", "G", "G♯", "A", "A♯", "B"];
+const DIRECTIONS = { fwd: "forward", rev: "reverse", brake: "brake", float: "float" };
 const SENSOR_MODES_IN_TENTHS = { celsius: "°C", fahrenheit: "°F" };
 
 let brickSvg = "";
@@ -106,7 +107,8 @@ function buildCard(i) {
         raw.addEventListener("pointerup", () => { dragging = false; });
         raw.addEventListener("input", () => sendRaw(raw.value));
         const touch = row.querySelector(".touch");
-        holdable(touch, down => post("/sensor", { brick: i, input: n, raw: down ? TOUCH_PRESSED_RAW : TOUCH_RELEASED_RAW }));
+        holdable(touch, down =>
+            post("/sensor", { brick: i, input: n, raw: down ? TOUCH_PRESSED_RAW : TOUCH_RELEASED_RAW }));
         node.querySelector(".inputs tbody").appendChild(row);
         card.inputs.push({ row, raw, busy: () => dragging || document.activeElement === raw });
     }
@@ -139,9 +141,10 @@ function renderBrick(card, b) {
     for (const name of ["A", "B", "C"]) {
         const m = b.motors[name], o = card.outputs[name];
         o.row.className = m.dir;
-        o.row.querySelector(".dir").textContent = { fwd: "forward", rev: "reverse", brake: "brake", float: "float" }[m.dir];
+        o.row.querySelector(".dir").textContent = DIRECTIONS[m.dir];
         o.row.querySelector(".level").textContent = `power ${m.level}`;
-        o.row.querySelector(".bar").textContent = m.dir === "fwd" || m.dir === "rev" ? "■".repeat(m.level + 1) + "□".repeat(7 - m.level) : "";
+        const turning = m.dir === "fwd" || m.dir === "rev";
+        o.row.querySelector(".bar").textContent = turning ? "■".repeat(m.level + 1) + "□".repeat(7 - m.level) : "";
         o.rotor.setAttribute("class", `rotor ${m.dir}`);
         o.rotor.style.animationDuration = `${(2.4 / (m.level + 1)).toFixed(2)}s`;
     }

@@ -54,6 +54,12 @@ def number(page):
     return "".join(digit(page, pos) for pos in (5, 4, 3, 2, 1)).strip()
 
 
+def showing(driver, wanted):
+    """What the page shows if `wanted` holds for it, else None."""
+    page = driver.execute_script(READ_PAGE)
+    return page if page and wanted(page) else None
+
+
 def browser():
     options = webdriver.ChromeOptions()
     options.binary_location = "/usr/bin/chromium"
@@ -79,9 +85,8 @@ def main():
         try:
             driver.get("http://127.0.0.1:%d/" % sim.port)
             page = wait_for("the page to show output A forward and the program's display",
-                            lambda: (lambda p: p if p and p["link"] == "live" and p["a_fwd"] and p["a_row"] == "fwd"
-                                     and digit(p, 0) == str(SLOT) and number(p) == SHOWN else None)(
-                                driver.execute_script(READ_PAGE)), seconds=20, every=0.2)
+                            lambda: showing(driver, lambda p: p["link"] == "live" and p["a_fwd"] and p["a_row"] == "fwd"
+                                            and digit(p, 0) == str(SLOT) and number(p) == SHOWN), seconds=20)
             check(not page["a_rev"] and page["rotor"] == "rotor fwd", "A turns forward: %r" % page)
             check("forward" in page["a_text"] and "power 7" in page["a_text"], "output table: %r" % page)
             check(page["tasks"] == "0", "task 0 runs: %r" % page)
@@ -91,8 +96,8 @@ def main():
             # A real click (pointer down and up over the button) on Run: the program stops, the outputs brake.
             driver.find_element(By.CSS_SELECTOR, '[data-brick="0"] [data-button="run"] rect').click()
             page = wait_for("the program to stop and output A to brake",
-                            lambda: (lambda p: p if p["a_row"] == "brake" and p["tasks"] == "none" and not p["a_fwd"] else None)(
-                                driver.execute_script(READ_PAGE)), seconds=10, every=0.2)
+                            lambda: showing(driver, lambda p: p["a_row"] == "brake" and p["tasks"] == "none"
+                                            and not p["a_fwd"]), seconds=10)
             check(not page["a_rev"] and page["rotor"] == "rotor brake", "A stopped: %r" % page)
             check(digit(page, 0) == str(SLOT), "still slot %d: %r" % (SLOT, page))
             state = sim.state()["bricks"][0]
@@ -100,6 +105,10 @@ def main():
                   "the simulator agrees: %r" % state)
             check('"dir":"brake"' in open(sim.trace).read(), "brake traced")
             driver.save_screenshot(os.path.join(shots, "panel-e2e.png"))
+            driver.find_element(By.ID, "audio").click()  # the tones to the speakers: no error either
+            time.sleep(0.3)
+            errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
+            check(not errors, "the page logged errors: %r" % errors)
         finally:
             driver.quit()
         check(sim.stop() < 3, "rcxsim stopped")
