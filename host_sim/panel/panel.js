@@ -182,6 +182,7 @@ function renderBrick(card, b) {
 
 function render(state) {
     while (cards.length < state.bricks.length) cards.push(buildCard(cards.length));
+    document.getElementById("bricks").classList.toggle("many", cards.length > 1);
     state.bricks.forEach((b, i) => renderBrick(cards[i], b));
     document.getElementById("clock").textContent = `simulated ${(state.t / 1000).toFixed(1)} s`;
 }
