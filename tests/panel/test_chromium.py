@@ -1,7 +1,8 @@
 """The panel end to end in a real browser: rcxsim with a tower and the panel, a program downloaded and started by
 the real nqc, the page opened in Debian's headless Chromium (driven by chromedriver through python3-selenium).
 From the page: output A forward, the LCD showing the program's slot and number; a real click on Run stops the
-program (outputs brake). Screenshots go to the folder given as the first argument.
+program (outputs brake); View is held as long as the pointer is down. Screenshots go to the folder given as the first
+argument.
 
 Usage: test_chromium.py SCREENSHOT_DIR"""
 import os
@@ -12,6 +13,7 @@ import time
 
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 
 from panel_lib import HERE, NQC, Sim, check, wait_for
@@ -105,6 +107,15 @@ def main():
                   "the simulator agrees: %r" % state)
             check('"dir":"brake"' in open(sim.trace).read(), "brake traced")
             driver.save_screenshot(os.path.join(shots, "panel-e2e.png"))
+            # Held while pressed: the brick sees View down until the pointer lets go.
+            view = driver.find_element(By.CSS_SELECTOR, '[data-brick="0"] [data-button="view"] rect')
+            ActionChains(driver).click_and_hold(view).perform()
+            wait_for("View held", lambda: sim.state()["bricks"][0]["buttons"]["view"], seconds=5)
+            time.sleep(0.3)
+            check(sim.state()["bricks"][0]["buttons"]["view"], "View still held")
+            ActionChains(driver).release().perform()
+            wait_for("View released", lambda: not sim.state()["bricks"][0]["buttons"]["view"], seconds=5)
+
             driver.find_element(By.ID, "audio").click()  # the tones to the speakers: no error either
             time.sleep(0.3)
             errors = [e for e in driver.get_log("browser") if e["level"] == "SEVERE"]
