@@ -8,7 +8,9 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
 # command-or-file:debian-package
 HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc firmdl3:brickos \
-               /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev
+               /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
+               /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
+               /usr/lib/python3/dist-packages/selenium:python3-selenium
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
@@ -59,7 +61,8 @@ fuzz: asan
 bench: host firmware deps-bench
 	@for s in tests/bench/*.sh; do sh "$$s" $(HOST_DIR) $(TARGET_DIR) || exit 1; done
 
-# The virtual RCX demo: a sample program downloaded by nqc over the pseudo-terminal, its trace on the terminal.
+# The virtual RCX demo: a sample program downloaded by nqc over the pseudo-terminal, its trace on the terminal, the
+# brick live in the browser (the URL is printed; PANEL_PORT=N for another port than 8330) until Ctrl-C.
 run: host
 	sh host_sim/demo.sh $(HOST_DIR)
 

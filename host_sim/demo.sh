@@ -1,7 +1,8 @@
 #!/bin/sh
-# `make run`: the virtual RCX on a pseudo-terminal, a sample program downloaded and started by the real nqc, and
-# the trace (JSON lines: motors, sound, LCD, IR bytes) on the terminal for a few seconds.
-# Usage: sh host_sim/demo.sh BUILD_DIR (the host build, with rcxsim in it)
+# `make run`: the virtual RCX on a pseudo-terminal with its panel in the browser, a sample program downloaded and
+# started by the real nqc, and the trace (JSON lines: motors, sound, LCD, IR bytes) on the terminal. The brick
+# keeps running for the panel until Ctrl-C.
+# Usage: sh host_sim/demo.sh BUILD_DIR (the host build, with rcxsim in it); PANEL_PORT (default 8330) for the page
 set -eu
 build="${1:-build/host}"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,15 +18,18 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 1' INT TERM
 
-echo "== rcxsim --tty $work/rcx --trace - (real time)"
-"$sim" --tty "$work/rcx" --trace - &
+port="${PANEL_PORT:-8330}"
+echo "== rcxsim --tty $work/rcx --panel $port --trace - (real time)"
+"$sim" --tty "$work/rcx" --panel "$port" --trace - &
 pid=$!
 n=0
 while [ ! -e "$work/rcx" ]; do
     n=$((n + 1))
+    kill -0 "$pid" 2>/dev/null || { echo "demo: rcxsim did not start (PANEL_PORT=N: another port)" >&2; exit 1; }
     [ $n -lt 100 ] || { echo "demo: rcxsim did not start" >&2; exit 1; }
     sleep 0.05
 done
+echo "== the panel: open http://127.0.0.1:$port/ in a browser"
 echo "== nqc -S$work/rcx -TRCX2 -d demo.nqc -run"
 nqc -S"$work/rcx" -TRCX2 -d "$here/demo.nqc" -run
 echo "== nqc -S$work/rcx -raw 120000 (poll variable 0, laps, as it counts)"
@@ -33,5 +37,6 @@ nqc -S"$work/rcx" -raw 120000
 sleep 4
 echo "== nqc -S$work/rcx -raw 120000"
 nqc -S"$work/rcx" -raw 120000
-sleep 1
-echo "== done"
+echo "== the brick runs on for the panel at http://127.0.0.1:$port/ (press Run there to start the program again);"
+echo "   Ctrl-C stops it"
+wait "$pid"

@@ -8,7 +8,7 @@
 #include "sim.h"
 #include "hal.h"
 
-static const char *const motor_dir[4] = { "float", "rev", "fwd", "brake" };
+const char *const sim_motor_dirs[4] = { "float", "rev", "fwd", "brake" }; /* by enum hal_motor_mode */
 
 void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
 {
@@ -17,7 +17,7 @@ void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
     if (port >= 3 || sb->motor[port] == v)
         return;
     sb->motor[port] = v;
-    trace_line(sb, "\"motor\":\"%c\",\"dir\":\"%s\",\"level\":%u", 'A' + port, motor_dir[mode & 3u], level & 7u);
+    trace_line(sb, "\"motor\":\"%c\",\"dir\":\"%s\",\"level\":%u", 'A' + port, sim_motor_dirs[mode & 3u], level & 7u);
 }
 
 void hal_sensor_power(struct rcx *b, u8 input, u8 on)
@@ -64,6 +64,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
     unsigned i;
 
     room_send(sb->sim, &sb->tx, data, len, mode);
+    sb->ir_out += len;
     for (i = 0; i < len; i++)
         sprintf(hex + 2 * i, "%02x", data[i]);
     hex[2 * len] = 0;

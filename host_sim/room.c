@@ -46,6 +46,8 @@ void room_send(struct sim *s, struct sim_tx *tx, const unsigned char *data, unsi
 
 static void hear(struct sim_brick *b, unsigned char byte, int error)
 {
+    if (b->mode != SIM_STANDBY)
+        b->ir_in++;
     if (b->mode == SIM_FIRMWARE)
         rt_ir_byte(&b->k, byte, (u8)error);
     else if (b->mode == SIM_ROM)

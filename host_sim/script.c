@@ -11,13 +11,15 @@
 #include <string.h>
 #include "sim.h"
 
+const char *const sim_button_names[SIM_BUTTONS] = { "onoff", "run", "view", "prgm" };
+
 static int fail(const char *path, int line, const char *what)
 {
     fprintf(stderr, "rcxsim: %s:%d: %s\n", path, line, what);
     return -1;
 }
 
-static int word_index(const char *w, const char *const *list, int n)
+int sim_word_index(const char *w, const char *const *list, int n)
 {
     int i;
     for (i = 0; i < n; i++)
@@ -26,7 +28,7 @@ static int word_index(const char *w, const char *const *list, int n)
     return -1;
 }
 
-static int parse_number(const char *w, long lo, long hi, long *out)
+int sim_parse_number(const char *w, long lo, long hi, long *out)
 {
     char *end;
     long v;
@@ -42,7 +44,6 @@ static int parse_number(const char *w, long lo, long hi, long *out)
 static int parse_line(struct sim *s, char *text, struct sim_event *ev, const char *path, int line)
 {
     static const char *const kinds[] = { "sensor", "button", "battery", "ir", "quit" };
-    static const char *const buttons[] = { "onoff", "run", "view", "prgm" };
     static const char *const edges[] = { "up", "down" };
     char *w[300];
     int n = 0, k, at = 1;
@@ -53,34 +54,34 @@ static int parse_line(struct sim *s, char *text, struct sim_event *ev, const cha
     if (n == 0)
         return 0;
     memset(ev, 0, sizeof *ev);
-    if (parse_number(w[0], 0, 1000L * 3600 * 24 * 365, &v))
+    if (sim_parse_number(w[0], 0, 1000L * 3600 * 24 * 365, &v))
         return fail(path, line, "expected a time in ms");
     ev->at = (sim_us)v * 1000;
     if (n > 1 && w[1][0] == '@') {
-        if (parse_number(w[1] + 1, 0, s->nbricks - 1, &v))
+        if (sim_parse_number(w[1] + 1, 0, s->nbricks - 1, &v))
             return fail(path, line, "no such brick");
         ev->brick = (int)v;
         at = 2;
     }
-    if (at >= n || (k = word_index(w[at], kinds, 5)) < 0)
+    if (at >= n || (k = sim_word_index(w[at], kinds, 5)) < 0)
         return fail(path, line, "expected sensor, button, battery, ir or quit");
     ev->kind = k;
     switch (ev->kind) {
     case EV_SENSOR:
-        if (n != at + 4 || parse_number(w[at + 1], 1, 3, &v) || strcmp(w[at + 2], "raw"))
+        if (n != at + 4 || sim_parse_number(w[at + 1], 1, 3, &v) || strcmp(w[at + 2], "raw"))
             return fail(path, line, "expected: sensor <1-3> raw <0-1023>");
         ev->a = (int)v - 1;
-        if (parse_number(w[at + 3], 0, 1023, &v))
+        if (sim_parse_number(w[at + 3], 0, 1023, &v))
             return fail(path, line, "raw value out of 0-1023");
         ev->b = (int)v;
         break;
     case EV_BUTTON:
-        if (n != at + 3 || (ev->a = word_index(w[at + 1], buttons, 4)) < 0 ||
-            (ev->b = word_index(w[at + 2], edges, 2)) < 0)
+        if (n != at + 3 || (ev->a = sim_word_index(w[at + 1], sim_button_names, SIM_BUTTONS)) < 0 ||
+            (ev->b = sim_word_index(w[at + 2], edges, 2)) < 0)
             return fail(path, line, "expected: button <onoff|run|view|prgm> <down|up>");
         break;
     case EV_BATTERY:
-        if (n != at + 2 || parse_number(w[at + 1], 0, 65535, &v))
+        if (n != at + 2 || sim_parse_number(w[at + 1], 0, SIM_BATTERY_MAX_MV, &v))
             return fail(path, line, "expected: battery <mV>");
         ev->a = (int)v;
         break;

@@ -11,6 +11,7 @@
 #include <time.h>
 #include "sim.h"
 #include "rcx_image.h"
+#include "panel.h"
 
 /* Where the program memory would sit in the brick's RAM: the top of 8000-EFFF (memory map, UploadRam). */
 #define SIM_ARENA_ADDR ((u16)(0xF000u - RCX_ARENA_SIZE))
@@ -41,7 +42,9 @@ static void usage(FILE *f)
           "  --trace FILE|-     JSON lines: motors, sound, LCD, sensor power, IR bytes sent, power, ROM\n"
           "  --load [B@]F.rcx[:SLOT]  preload an nqc image into brick B (default 0), program slot 1-5\n"
           "  --rom              start in the ROM's download mode (no firmware)\n"
-          "  --duration MS      stop after MS simulated milliseconds\n",
+          "  --duration MS      stop after MS simulated milliseconds\n"
+          "  --panel PORT       the bricks live in a browser at http://127.0.0.1:PORT/ (0: any free port)\n"
+          "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n",
           f);
 }
 
@@ -113,7 +116,7 @@ static int load_image(struct sim *s, const char *spec)
     return 0;
 }
 
-static void apply_event(struct sim *s, const struct sim_event *ev)
+void sim_apply(struct sim *s, const struct sim_event *ev)
 {
     struct sim_brick *b = s->brick[ev->brick];
     switch (ev->kind) {
@@ -121,6 +124,7 @@ static void apply_event(struct sim *s, const struct sim_event *ev)
         b->raw[ev->a] = (unsigned short)ev->b;
         break;
     case EV_BUTTON:
+        b->buttons = (unsigned char)(ev->b ? b->buttons | 1u << ev->a : b->buttons & ~(1u << ev->a));
         if (b->mode == SIM_STANDBY && ev->a == RT_BUTTON_ONOFF && ev->b) {
             b->mode = SIM_FIRMWARE; /* the press that wakes the brick is not seen by the firmware */
             trace_line(b, "\"power\":\"on\"");
@@ -215,11 +219,13 @@ static int run(struct sim *s, sim_us duration)
     while (!s->quit && !stop_signal) {
         room_advance(s, s->now);
         while (s->next_event < s->nevents && s->events[s->next_event].at <= s->now)
-            apply_event(s, &s->events[s->next_event++]);
+            sim_apply(s, &s->events[s->next_event++]);
         if (s->quit)
             break;
         if (s->ntowers && ms++ % poll_every == 0)
             tower_poll(s);
+        if (s->panel)
+            panel_sync(s->panel, s);
         for (i = 0; i < s->nbricks; i++)
             step(s, s->brick[i]);
         if (duration && s->now >= duration)
@@ -235,8 +241,9 @@ int main(int argc, char **argv)
 {
     static struct sim sim;
     struct sim *s = &sim;
-    const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL;
+    const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL, *panel_bind = "127.0.0.1";
     int nttys = 0, nloads = 0, rom = 0, i, status = 0;
+    long panel_port = -1;
     sim_us duration = 0;
 
     s->nbricks = 1;
@@ -269,6 +276,10 @@ int main(int argc, char **argv)
                 trace = v;
             } else if (strcmp(a, "--load") == 0 && nloads < 64) {
                 loads[nloads++] = v;
+            } else if (strcmp(a, "--panel") == 0 && sim_parse_number(v, 0, 65535, &panel_port) == 0) {
+                ;
+            } else if (strcmp(a, "--panel-bind") == 0) {
+                panel_bind = v;
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
                 duration = (sim_us)atol(v) * 1000;
             } else {
@@ -300,6 +311,15 @@ int main(int argc, char **argv)
         s->brick[i] = new_brick(s, i, rom);
     for (i = 0; i < nloads && status == 0; i++)
         status = load_image(s, loads[i]);
+    /* The panel first: once a tower's link exists, everything is up. */
+    if (status == 0 && panel_port >= 0) {
+        char err[256];
+        s->panel = panel_start(s, panel_bind, (unsigned)panel_port, err, sizeof err);
+        if (!s->panel) {
+            fprintf(stderr, "rcxsim: --panel %ld: %s\n", panel_port, err);
+            status = 1;
+        }
+    }
     for (i = 0; i < nttys && status == 0; i++) {
         if (tower_open(s, &s->tower[i], ttys[i], s->brick[i])) {
             fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
@@ -310,6 +330,8 @@ int main(int argc, char **argv)
     }
     if (status == 0)
         run(s, duration);
+    if (s->panel)
+        panel_stop(s->panel);
     for (i = 0; i < s->nbricks; i++) {
         trace_flush_sound(s->brick[i]);
         free(s->brick[i]);

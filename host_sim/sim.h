@@ -61,6 +61,8 @@ struct sim_brick {
     unsigned short raw[3];         /* A/D value of inputs 1-3 */
     unsigned battery_mv;
     long credit_us;                /* byte-code budget of the brick model */
+    unsigned char buttons;         /* bit n: button n (enum rt_button) held down */
+    unsigned long ir_in, ir_out;   /* IR bytes heard by its receiver and sent by its LED */
     /* Last state reported to the trace. */
     unsigned char motor[3], sensor_power[3], lcd[9], range;
     int lcd_known;
@@ -78,6 +80,8 @@ struct sim_event {                 /* one line of the --script file */
     int nbytes;
 };
 
+struct panel;
+
 struct sim {
     sim_us now;
     int nbricks;
@@ -91,6 +95,7 @@ struct sim {
     double speed;                  /* x real time; 0 = as fast as possible */
     unsigned rate;                 /* byte codes per ms; 0 = the brick model */
     int quit;
+    struct panel *panel;           /* the browser panel (--panel), or NULL */
 };
 
 /* room.c: the shared IR room and the towers. */
@@ -108,14 +113,23 @@ void rom_tick(struct sim_brick *b);
 
 /* sim.c */
 void sim_start_firmware(struct sim_brick *b);
+void sim_apply(struct sim *s, const struct sim_event *ev); /* an input (script or panel) takes effect now */
+
+/* hal_sim.c */
+extern const char *const sim_motor_dirs[4]; /* the trace's names of enum hal_motor_mode */
 
 /* trace.c */
 void trace_line(struct sim_brick *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void trace_lcd_number(const unsigned char *image, char *num, char *prog);
 void trace_flush_sound(struct sim_brick *b);
 
-/* script.c */
+/* script.c: the script's words, shared with the panel's requests so that both accept the same inputs. */
+#define SIM_BUTTONS 4
+#define SIM_BATTERY_MAX_MV 65535
+extern const char *const sim_button_names[SIM_BUTTONS]; /* by enum rt_button */
 int script_load(struct sim *s, const char *path);
+int sim_word_index(const char *w, const char *const *list, int n);
+int sim_parse_number(const char *w, long lo, long hi, long *out); /* decimal, within lo-hi; 0 = good */
 
 #define sim_brick_of(rcx) ((struct sim_brick *)(void *)(rcx))
 
