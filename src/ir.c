@@ -176,6 +176,7 @@ static void execute(struct rcx_brick *k)
 
     ir->rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
+    display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     if (!ir->have_last || op != ir->last_op) {
         ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->reply);
         ir->last_op = op;
@@ -216,6 +217,7 @@ void ir_poll(struct rcx_brick *k)
             ir->tx_pack = k->vm.remote.tx_pack;
             ir->tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
+            display_ir_activity(&k->vm);
         }
         if (len)
             tx_start(ir, len);
