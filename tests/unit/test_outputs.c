@@ -315,6 +315,33 @@ static void motor_scheme_of_page_98(void **state)
     brick_free(b);
 }
 
+/* A program started from the host (nqc -run: StartTask 0) begins with its outputs forward, braked, at full power, as
+ * Run starts one (reference-firmware.md, "Observed"); other tasks, and StartTask from a program, leave them. */
+static void start_task_0_from_the_host_brakes(void **state)
+{
+    static const u8 task1[] = { 0x71, 0x00 };              /* task 1 starts task 0 */
+    static const u8 idle[] = { 0x43, 0x02, 0x64, 0x00 };   /* Wait 100 */
+    struct rcx *b = brick_new();
+    unsigned i;
+    (void)state;
+    assert_int_equal(brick_download(b, 1, 0, idle, sizeof idle), 0);
+    assert_int_equal(brick_download(b, 1, 1, task1, sizeof task1), 0);
+    ON(0x07);
+    DIR_REV(0x02);
+    POWER(0x07, 3);
+    cmd2(b, 0x71, 1);                  /* StartTask 1 from the host: outputs untouched ... */
+    brick_run_ms(b, 10, 10);           /* ... and task 1 starts task 0 from a program: untouched too */
+    assert_int_equal(b->task[0].state, RCX_TASK_WAITING);
+    assert_int_equal(status(b, 0), 0x8B);
+    assert_int_equal(status(b, 1), 0x83);
+    cmd2(b, 0x71, 0);                  /* StartTask 0 from the host */
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(status(b, (u8)i), 0x4F);
+        expect_motor(b, (u8)i, BRAKE, 7);
+    }
+    brick_free(b);
+}
+
 static void bad_operands_change_nothing(void **state)
 {
     static const struct { const char *what; u8 bytes[4]; u8 len; } rows[] = {
@@ -355,6 +382,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(power_on_brakes),
+        cmocka_unit_test(start_task_0_from_the_host_brakes),
         cmocka_unit_test(effective_output),
         cmocka_unit_test(hardware_told_only_of_changes),
         cmocka_unit_test(six_state_table),
