@@ -19,7 +19,7 @@ static void next_view(struct rcx *b)
 {
     u8 v = (u8)(b->display.view + 1);
 
-    display_view(b, v > DISPLAY_OUTPUT_C ? DISPLAY_WATCH : v);
+    b->display.view = v > DISPLAY_OUTPUT_C ? DISPLAY_WATCH : v;
 }
 
 void ui_button(struct rcx_brick *k, u8 button, u8 down)

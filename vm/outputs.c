@@ -15,14 +15,16 @@
 RCX_STATIC_ASSERT(driven_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
                                 HAL_MOTOR_BRAKE == 3);
 
+#define ALL_MOTORS 0x07
+#define SET(value) OUTPUTS_CHANGE(0xFF, value)
+#define STOP OUTPUTS_CHANGE(RCX_MOTOR_ON | RCX_MOTOR_BRAKE, RCX_MOTOR_BRAKE) /* off, braked, the rest kept */
+
 /* firm0328 reads 0x4F (off = brake, forward, power 7) for every output right after it has started and after it
  * was switched off (reference-firmware.md), which is also the state of spec p. 98 for starting a program; the
  * port's latch floats until then. */
 void outputs_init(struct rcx *b)
 {
-    u8 i;
-    for (i = 0; i < RCX_MOTORS; i++)
-        b->out.global[i] = RCX_MOTOR_ON | RCX_MOTOR_FWD | 7;
+    outputs_update(b, OUTPUTS_GLOBAL | ALL_MOTORS, SET(RCX_MOTOR_ON | RCX_MOTOR_FWD | 7));
     outputs_program_start(b);
 }
 
@@ -102,8 +104,6 @@ u8 outputs_global_status(const struct rcx *b, u8 i)
     return (u8)((b->out.global[i] & 0x8F) | 0x30);
 }
 
-#define ALL_MOTORS 0x07
-
 void outputs_update(struct rcx *b, u8 list, u16 change)
 {
     u8 *reg = (list & OUTPUTS_GLOBAL) ? b->out.global : b->out.motor, n = RCX_MOTORS;
@@ -115,8 +115,6 @@ void outputs_update(struct rcx *b, u8 list, u16 change)
     outputs_changed(b);
 }
 
-#define SET(value) OUTPUTS_CHANGE(0xFF, value)
-#define STOP OUTPUTS_CHANGE(RCX_MOTOR_ON | RCX_MOTOR_BRAKE, RCX_MOTOR_BRAKE) /* off, braked, the rest kept */
 
 void outputs_program_start(struct rcx *b)
 {
