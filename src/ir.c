@@ -179,6 +179,7 @@ static void execute(struct rcx_brick *k)
 
     ir->rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
+    display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
     if (op != ir->last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
         ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->reply);
@@ -214,6 +215,7 @@ void ir_poll(struct rcx_brick *k)
             ir->tx_pack = k->vm.remote.tx_pack;
             ir->tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
+            display_ir_activity(&k->vm);
         }
         if (len)
             tx_start(ir, len);

@@ -7,9 +7,7 @@ RCX_STATIC_ASSERT(vm_is_first, offsetof(struct rcx_brick, vm) == 0);
 /* The port attaches its data (rcx.port) before power-on, and may be called from the init functions below. */
 void rt_init(struct rcx_brick *k, u16 arena_addr)
 {
-    void *port = k->vm.port;
     vm_init(&k->vm, arena_addr);
-    k->vm.port = port;
     ir_init(k);
     ui_init(k);
 }

@@ -7,29 +7,19 @@
 #include "runtime.h"
 #include "hal.h"
 
-RCX_STATIC_ASSERT(watch_is_0, DISPLAY_WATCH == 0);
-
-/* Nothing idle yet, not switching off, View coming back to the watch, no battery mark. */
+/* Nothing idle yet, not switching off, no battery mark. */
 void ui_init(struct rcx_brick *k)
 {
     memset(&k->ui, 0, sizeof k->ui);
 }
 
-/* View steps through inputs 1-3 and outputs A-C, then back to the view it started from (the watch, or a
- * program's own choice), so that looking around does not lose the display a program asked for. */
-static void next_view(struct rcx_brick *k)
+/* View steps from whatever is shown (a program's own view included, which drops out) to the watch, then through
+ * inputs 1-3 and outputs A-C and back to the watch, as firm0328 does (reference-firmware.md). */
+static void next_view(struct rcx *b)
 {
-    u8 v = k->vm.display.view;
+    u8 v = (u8)(b->display.view + 1);
 
-    if (v == DISPLAY_OUTPUT_C) {
-        v = k->ui.home_view;
-    } else if (v >= DISPLAY_INPUT_1 && v < DISPLAY_OUTPUT_C) {
-        v++;
-    } else {
-        k->ui.home_view = v;
-        v = DISPLAY_INPUT_1;
-    }
-    display_view(&k->vm, v);
+    b->display.view = v > DISPLAY_OUTPUT_C ? DISPLAY_WATCH : v;
 }
 
 void ui_button(struct rcx_brick *k, u8 button, u8 down)
@@ -40,13 +30,13 @@ void ui_button(struct rcx_brick *k, u8 button, u8 down)
         return;
     b->idle_reset = 1;
     if (button == RT_BUTTON_ONOFF) {
-        k->ui.off = 1;
+        k->ui.off = UI_OFF_ASKED;
         return;
     }
     if (button > RT_BUTTON_PRGM)
         return;
     if (button == RT_BUTTON_VIEW) {
-        next_view(k);
+        next_view(b);
     } else if (button == RT_BUTTON_RUN && !program_running(b)) { /* spec p. 98: "start 0" or "stop" */
         outputs_program_start(b);
         sched_start_task(b, 0);
@@ -75,11 +65,11 @@ void ui_tick(struct rcx_brick *k)
     } else if (++ui->idle_ms >= UI_MINUTE_MS) {
         ui->idle_ms = 0;
         if (b->power_down_min && ++ui->idle_min >= b->power_down_min)
-            ui->off = 1;
+            ui->off = UI_OFF_ASKED;
     }
     if (b->turn_off) {
         b->turn_off = 0; /* the machine only sets it when a power-down time is set */
-        ui->off = 1;
+        ui->off = UI_OFF_ASKED;
     }
     if (ui->battery_low ? b->battery_mv > UI_BATTERY_OK_MV : b->battery_mv < UI_BATTERY_LOW_MV) {
         ui->battery_low ^= 1;
@@ -88,22 +78,35 @@ void ui_tick(struct rcx_brick *k)
 }
 
 /*
- * Off (spec p. 98: all motors float) until On-Off is pressed again. Programs, variables, datalog and watch stay as
- * they are; the running program does not survive. The motors are left forward, float, full power, which is also
- * the state p. 98 asks for when the brick comes on again.
+ * Off (spec p. 98: all motors float) until On-Off is pressed again. Programs, variables and the datalog stay as they
+ * are; the running program does not survive, and the watch starts again from 00:00 (reference-firmware.md). The
+ * motors are left forward, braked, full power: what firm0328 reports after switching off. Switching off plays the
+ * key click, and standby waits until it has been heard; switching on plays the double beep.
  */
 void ui_poll(struct rcx_brick *k)
 {
     struct rcx *b = &k->vm;
+    u8 off = k->ui.off;
 
     /* A PBTurnOff from the host is acknowledged first: the reply and its echo have to be through. */
-    if (!k->ui.off || !ir_idle(k))
+    if (!off || !ir_idle(k))
+        return;
+    if (off == UI_OFF_ASKED) {
+        k->ui.off = UI_OFF_CLICKING;
+        sound_clear(b);
+        sound_ui(b, 0);
+    } else if (b->sound.count) {
+        return;
+    }
+    /* Stopped at once, and again right before standby: a command may have started a task during the click. */
+    sched_stop_all(b);
+    outputs_init(b);
+    if (off == UI_OFF_ASKED)
         return;
     k->ui.off = 0;
-    sched_stop_all(b);
-    sound_clear(b);
-    outputs_init(b);
-    outputs_changed(b);
     hal_power_off(b); /* returns when switched on again */
+    b->watch_ms = 0;
+    b->watch = 0;
+    sound_ui(b, 1);
     b->idle_reset = 1;
 }

@@ -13,11 +13,12 @@ struct rcx_brick;
 #define UI_BATTERY_LOW_MV 6300u  /* battery mark on below this (brickOS's "low", rcx-hardware.md §3.4) */
 #define UI_BATTERY_OK_MV 6700u   /* and off again only above this ("normal"): no flicker at the threshold */
 
+enum { UI_ON = 0, UI_OFF_ASKED, UI_OFF_CLICKING /* the key click plays, then standby */ };
+
 struct rcx_ui {
     u16 idle_ms;     /* milliseconds into the current minute without a command or a button */
     u8 idle_min;     /* whole minutes without one */
-    u8 off;          /* switching off was asked for (On-Off, PBTurnOff, power-down time): done by ui_poll */
-    u8 home_view;    /* the view that View comes back to after output C */
+    u8 off;          /* UI_OFF_*: switching off (On-Off, PBTurnOff, power-down time), done by ui_poll */
     u8 battery_low;  /* the mark is on */
 };
 

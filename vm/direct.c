@@ -110,10 +110,10 @@ static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
-    u8 avail = rcx_op_avail(op);
+    u8 flags = rcx_opflags[rcx_op_index(op)];
     u8 n = 0, i, c;
 
-    if (!(avail & RCX_DIRECT))
+    if (!(flags & (RCX_DIRECT << 3)))
         return 0;                  /* unknown or program-only: not answered */
     if (op != RCX_OP_CONTINUE_DL && len < 1 + rcx_op_params(op))
         return 0;                  /* truncated */
@@ -148,9 +148,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         break;
     }
     case D_POLL: {
-        /* Task locals are not pollable: firm0328 answers 0x8000 for them (reference-firmware.md). */
-        s16 v = (cmd[1] == 0 && cmd[2] >= RCX_GLOBALS && cmd[2] < RCX_VARS) ? (s16)-32768
-                                                                             : source_get(b, NULL, cmd[1], cmd[2]);
+        s16 v = source_poll(b, cmd);
         reply[1] = (u8)v;
         reply[2] = (u8)((u16)v >> 8);
         n = 2;
@@ -201,9 +199,17 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         remote_command(b, RCX_LE16(cmd + 1));
         return 0;
     default:
+        /* A program started from the host (nqc -run) begins as one started with Run does (reference-firmware.md). */
+        if (op == RCX_OP_START_TASK && !cmd[1])
+            outputs_program_start(b);
         ops_exec(b, NULL, cmd);
-        if (op == RCX_OP_MESSAGE || op == RCX_OP_SEND_UART)
-            return 0;              /* the two shared commands with no reply (table column "reply" 0) */
+        /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
+         * SetDatalog makes 1, when memory is short (reference-firmware.md). */
+        c = (u8)(flags >> 5);
+        if (!c)
+            return 0;
+        reply[1] = op == RCX_OP_SET_DATALOG && !b->log_size;
+        n = (u8)(c - 1);
         break;
     }
     return (u8)(1 + n);

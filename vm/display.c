@@ -27,12 +27,14 @@ static const u8 digit_segs[5 * 7 + 1] = {
 static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
 #define MINUS 10
 
-/* Decimal point for 0-3 decimal places: none (the figure's body, lit anyway), right of digit 2, 3, 4. */
-static const u8 point_segs[4] = { BODY, S(5, 6), S(6, 6), S(8, 6) };
+/* Decimal point for 0-3 decimal places: none (the figure's body, lit anyway), right of digit 2, 3, 4; then the
+ * watch's four digits with the point lit, and dark. */
+static const u8 point_segs[6] = { BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY };
+#define WATCH_POINT 4 /* + 1: dark */
 
 /*
  * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
- * their entries light the figure's body, which is lit anyway), then input 1-3 active (a sensor type is set), then
+ * their entries light the figure's body, which is lit anyway), then input 1-3 pressed, then
  * output A-C by the mode on the wire: float (nothing new), reverse arrows, forward arrows, brake (nothing new).
  */
 static const u8 marks[] = {
@@ -44,7 +46,7 @@ static const u8 marks[] = {
     BODY, BODY, BODY,
 };
 #define VIEW_SELECTED 0 /* + view */
-#define INPUT_ACTIVE 8
+#define INPUT_PRESSED 8
 #define OUTPUT_MODE 11 /* + 3 * enum hal_motor_mode + output */
 RCX_STATIC_ASSERT(output_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
                                 HAL_MOTOR_BRAKE == 3);
@@ -83,9 +85,9 @@ static void digit(u8 pos, u8 glyph)
 }
 
 /*
- * A signed number in positions 1-4 with `places` decimals (0-3): leading zeros dropped except those the decimal
- * point needs ("0.05"), the minus sign in the middle segment left of the first digit. Magnitudes above 9999 show as
- * "----": a clamped 9999 would look like a real reading.
+ * A signed number in positions 1-4 with the point of point_segs[places]: leading zeros dropped except those the
+ * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
+ * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
 static __attribute__((noinline)) void number(s16 v, u8 places)
 {
@@ -98,7 +100,8 @@ static __attribute__((noinline)) void number(s16 v, u8 places)
         return;
     }
     lit(point_segs[places]);
-    places++; /* digits shown at least */
+    if (++places > 4) /* digits shown at least */
+        places = 4;
     do {
         q = u / 10;
         d = (u8)((u8)u - (u8)q * 10u); /* u % 10 without a second division */
@@ -125,40 +128,44 @@ u8 program_running(const struct rcx *b)
 static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
+    const struct rcx_display *d = &b->display;
     u8 i, mode, view, places;
     s16 v;
 
-    memcpy(work, b->display.marks, DISPLAY_BYTES);
+    memcpy(work, d->marks, DISPLAY_BYTES);
     digit(0, (u8)(b->prog + 1));
-    /* The running figure walks (alternating with standing every 320 ms) while any task runs or waits. */
-    if ((b->ticks10 & 0x20) && program_running(b))
+    /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
+    if ((u8)(d->phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
         work[0] |= FIGURE_WALKING;
     else
         work[0] |= FIGURE_STANDING;
+    if (d->ir)
+        lit(DISPLAY_MARK_IR_LOW);
     for (i = 0; i < RCX_SENSORS; i++) {
-        if (b->sensor[i].type != SENSOR_NONE)
-            mark(INPUT_ACTIVE + i);
+        if (b->sensor[i].boolean)
+            mark(INPUT_PRESSED + i);
         mode = outputs_mode(b, i);
         mark((u8)(OUTPUT_MODE + mode * 3 + i));
     }
-    view = b->display.view;
+    view = d->view;
     mark(VIEW_SELECTED + view);
     /* `places` is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
-        places = 2;
+        places = (u8)(WATCH_POINT + (d->phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
     } else if (view <= DISPLAY_INPUT_3) {
         s = &b->sensor[view - DISPLAY_INPUT_1];
         v = s->value;
         places = (u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40; /* Celsius, Fahrenheit: tenths */
     } else if (view <= DISPLAY_OUTPUT_C) {
-        v = (s16)(outputs_status(b, (u8)(view - DISPLAY_OUTPUT_A)) & RCX_MOTOR_POWER);
+        /* 0 while the output is not running, power + 1 (1-8) while it is, as firm0328 shows it. */
+        i = outputs_status(b, (u8)(view - DISPLAY_OUTPUT_A));
+        v = (i & RCX_MOTOR_ON) ? (s16)((i & RCX_MOTOR_POWER) + 1) : 0;
         places = 0;
     } else {
         /* Reading the random source would advance the program's random sequence at every refresh. */
-        v = b->display.user_source == RCX_SRC_RANDOM ? 0 :
-            source_get(b, NULL, b->display.user_source, b->display.user_index);
-        places = b->display.user_precision;
+        v = d->user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, d->user_source, d->user_index);
+        places = d->user_precision;
     }
     number(v, places);
 }
@@ -193,14 +200,22 @@ void display_mark(struct rcx *b, u8 seg, u8 on)
     }
 }
 
+RCX_STATIC_ASSERT(refresh_is_the_10ms_step, DISPLAY_REFRESH_MS == 10);
+
+/* Once per 10 ms step of the machine's clock (rcx.ms is 0 at its first millisecond). */
 void display_tick(struct rcx *b)
 {
-    if (++b->display.clock < DISPLAY_REFRESH_MS)
+    struct rcx_display *d = &b->display;
+
+    if (b->ms)
         return;
-    b->display.clock = 0;
+    if (++d->phase >= 6 * DISPLAY_FRAME_STEPS)
+        d->phase = 0;
+    if (d->ir)
+        d->ir--;
     compose(b);
-    if (memcmp(work, b->display.shown, DISPLAY_BYTES)) {
-        memcpy(b->display.shown, work, DISPLAY_BYTES);
-        hal_lcd(b, b->display.shown);
+    if (memcmp(work, d->shown, DISPLAY_BYTES)) {
+        memcpy(d->shown, work, DISPLAY_BYTES);
+        hal_lcd(b, d->shown);
     }
 }

@@ -2,12 +2,14 @@
  * The LCD (spec pp. 51, 66, 97; source 14; rcx-hardware.md §3.6): views, indicators and marks composed into the
  * 9-byte segment image and handed to hal_lcd() when it changes.
  *
- * What the glass shows: the program slot + 1 in the small digit; the figure standing, or walking (alternating with
- * standing every 320 ms) while any task runs or waits; an "active" mark over each input with a sensor type set; the
- * arrow of each motor being driven (right = forward); the "selected" mark of the viewed input or output; and the
- * view's number in the four digits: the watch as hh.mm (the glass has no colon, so the decimal point of "00.00"
- * separates hours from minutes), an input's value (temperatures in tenths, with one decimal), an output's power
- * level, or the user's source with 0-3 decimals. Leading zeros are dropped; a minus sign sits left of the first
+ * What the glass shows (reference-firmware.md, "The brick's face"): the program slot + 1 in the small digit; the
+ * figure standing, or walking (alternating with standing every 260 ms) while any task runs or waits; a mark over
+ * each input that reads pressed (its boolean, whatever its type); the arrow of each motor being driven (right =
+ * forward); the "selected" mark of the viewed input or output; the IR mark for a moment around every IR exchange;
+ * and the view's number in the four digits: the watch as hh.mm with both leading zeros (the glass has no colon, so
+ * the decimal point of "00.00" separates hours from minutes, and blinks like a clock's), an input's value
+ * (temperatures in tenths, with one decimal), an output's power + 1 while it runs and 0 while it does not, or the
+ * user's source with 0-3 decimals. Other numbers drop their leading zeros; a minus sign sits left of the first
  * digit; magnitudes above 9999 show as "----".
  */
 #ifndef RCX_DISPLAY_H
@@ -18,7 +20,10 @@
 struct rcx;
 
 #define DISPLAY_BYTES 9
-#define DISPLAY_REFRESH_MS 50  /* the image is recomposed this often and sent only when it differs */
+#define DISPLAY_REFRESH_MS 10  /* the image is recomposed this often and sent only when it differs */
+#define DISPLAY_FRAME_STEPS 26 /* refreshes per frame of the walking figure: 260 ms; the watch's point is lit for
+                                  three frames and dark for three (0.78 s each) */
+#define DISPLAY_IR_STEPS 50    /* refreshes the IR mark stays lit after IR activity: 0.5 s */
 #define DISPLAY_MAX 9999       /* larger magnitudes show as "----" */
 
 /* Views (SelectDisplay, spec p. 66). */
@@ -47,7 +52,9 @@ struct rcx_display {
     u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
     u8 user_source;
     u16 user_index;
-    u8 clock;            /* milliseconds since the last composition */
+    u8 phase;            /* refreshes into a cycle of six frames: the figure walks in the odd ones, the watch's
+                            point is lit in the first three */
+    u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
 };
@@ -56,6 +63,9 @@ void display_view(struct rcx *b, u8 view);                          /* SelectDis
 void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
 void display_tick(struct rcx *b);                                   /* every 1 ms */
+/* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
+ * talking. A field store, not a call: it is made in the IR layer's busiest paths. */
+#define display_ir_activity(b) ((b)->display.ir = DISPLAY_IR_STEPS)
 u8 program_running(const struct rcx *b);                            /* nonzero: a task runs or waits */
 
 #endif

@@ -28,42 +28,45 @@ static s16 arith(u8 op, s16 a, s16 v)
     }
 }
 
-/* Motor list in bits 0-2 (A, B, C), a two-bit verb in bits 6-7. */
-static void set_motors(struct rcx *b, u8 *reg, u8 arg, u8 direction)
-{
-    u8 i, verb = (u8)(arg >> 6);
+/*
+ * OnOffFloat, ConnectDisconnect, SetFwdSetRwdRewDir, SetNormSetInvAltDir: motor list in bits 0-2 (A, B, C), a
+ * two-bit verb in bits 6-7. Each verb clears some bits of the register, then flips some: state 0 float, 1 off
+ * (brake), 2 on; direction 0 backwards, 1 flip, 2 forwards; verb 3 changes nothing. Switching on drops the brake
+ * bit: an output that is on reads 0x8F, not 0xCF, after Off then On (reference-firmware.md).
+ */
+#define STATE_BITS (RCX_MOTOR_ON | RCX_MOTOR_BRAKE)
+static const u16 verbs[8] = {
+    OUTPUTS_CHANGE(STATE_BITS, 0), OUTPUTS_CHANGE(STATE_BITS, RCX_MOTOR_BRAKE),
+    OUTPUTS_CHANGE(STATE_BITS, RCX_MOTOR_ON), 0,
+    OUTPUTS_CHANGE(RCX_MOTOR_FWD, 0), OUTPUTS_CHANGE(0, RCX_MOTOR_FWD),
+    OUTPUTS_CHANGE(RCX_MOTOR_FWD, RCX_MOTOR_FWD), 0,
+};
+/* The opcodes tell the four apart: 0x21 state, 0x67 global state, 0xE1 direction, 0x77 global direction. */
+#define IS_DIRECTION(op) ((op) & 0x90)
+#define IS_GLOBAL(op) ((op) & 0x04)
+RCX_STATIC_ASSERT(motor_ops, !IS_DIRECTION(RCX_OP_ON_OFF_FLOAT) && !IS_GLOBAL(RCX_OP_ON_OFF_FLOAT) &&
+                             !IS_DIRECTION(RCX_OP_CONNECT_DISCONNECT) && IS_GLOBAL(RCX_OP_CONNECT_DISCONNECT) &&
+                             IS_DIRECTION(RCX_OP_SET_DIRECTION) && !IS_GLOBAL(RCX_OP_SET_DIRECTION) &&
+                             IS_DIRECTION(RCX_OP_SET_GLOBAL_DIR) && IS_GLOBAL(RCX_OP_SET_GLOBAL_DIR) &&
+                             !(OUTPUTS_GLOBAL & 0x07));
 
-    for (i = 0; i < RCX_MOTORS; i++) {
-        if (!(arg & (1u << i)))
-            continue;
-        if (direction) {   /* 0 backwards, 1 flip, 2 forwards */
-            if (verb == 0)
-                reg[i] &= (u8)~RCX_MOTOR_FWD;
-            else if (verb == 1)
-                reg[i] ^= RCX_MOTOR_FWD;
-            else if (verb == 2)
-                reg[i] |= RCX_MOTOR_FWD;
-        } else {           /* state: 0 float, 1 off (brake), 2 on */
-            if (verb == 0)
-                reg[i] &= (u8)~(RCX_MOTOR_ON | RCX_MOTOR_BRAKE);
-            else if (verb == 1)
-                reg[i] = (u8)((reg[i] & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
-            else if (verb == 2)
-                reg[i] |= RCX_MOTOR_ON;
-        }
-    }
-    outputs_changed(b);
+static void set_motors(struct rcx *b, const u8 *ins)
+{
+    u8 op = ins[0], arg = ins[1];
+
+    outputs_update(b, (u8)((arg & 0x07) | (IS_GLOBAL(op) ? OUTPUTS_GLOBAL : 0)),
+                   verbs[(IS_DIRECTION(op) ? 4 : 0) + (arg >> 6)]);
 }
 
-static void set_power(struct rcx *b, u8 *reg, u8 motors, s16 power)
+/* SetPower, SetMaxPower (0xA3: global): 0-7 */
+RCX_STATIC_ASSERT(power_ops, !(RCX_OP_SET_POWER & 0x80) && (RCX_OP_SET_MAX_POWER & 0x80));
+static void set_power(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
-    u8 i;
-    if (power < 0 || power > 7)
-        return;
-    for (i = 0; i < RCX_MOTORS; i++)
-        if (motors & (1u << i))
-            reg[i] = (u8)((reg[i] & ~RCX_MOTOR_POWER) | power);
-    outputs_changed(b);
+    s16 power = source_get(b, t, ins[2], ins[3]);
+
+    if (power >= 0 && power <= 7)
+        outputs_update(b, (u8)((ins[1] & 0x07) | (ins[0] & 0x80 ? OUTPUTS_GLOBAL : 0)),
+                       OUTPUTS_CHANGE(RCX_MOTOR_POWER, power));
 }
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
@@ -103,12 +106,7 @@ OP(op_clear_message) { UNUSED_T; UNUSED_INS; set_message(b, 0); }
 OP(op_message) { UNUSED_T; set_message(b, ins[1]); }
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)((ins[0] & ~RCX_TOGGLE) == RCX_OP_MUTE)); }
 OP(op_clear_events) { UNUSED_T; UNUSED_INS; events_clear_all(b); }
-OP(op_out) { UNUSED_T; set_motors(b, b->out.motor, ins[1], 0); }
-OP(op_gout) { UNUSED_T; set_motors(b, b->out.global, ins[1], 0); }
-OP(op_dir) { UNUSED_T; set_motors(b, b->out.motor, ins[1], 1); }
-OP(op_gdir) { UNUSED_T; set_motors(b, b->out.global, ins[1], 1); }
-OP(op_power) { set_power(b, b->out.motor, ins[1], source_get(b, t, ins[2], ins[3])); }
-OP(op_max_power) { set_power(b, b->out.global, ins[1], source_get(b, t, ins[2], ins[3])); }
+OP(op_motors) { UNUSED_T; set_motors(b, ins); }
 OP(op_tx_power)
 {
     UNUSED_T;
@@ -232,8 +230,8 @@ static op_fn *const op_fns[] = {
     ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
     ops_var, ops_var, ops_var,
     op_ping, op_stop_all, op_turn_off, op_clear_sound, op_clear_message, op_mute,
-    op_mute, op_clear_events, op_out, op_gout, op_dir,
-    op_gdir, op_power, op_max_power, op_tx_power, op_system_sound,
+    op_mute, op_clear_events, op_motors, op_motors, op_motors,
+    op_motors, set_power, set_power, op_tx_power, op_system_sound,
     op_tone, op_tone_var, op_start, op_stop, op_select,
     op_clear_timer, op_power_down, op_clear_sensor, op_counter, op_counter,
     op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,

@@ -15,14 +15,17 @@
 RCX_STATIC_ASSERT(driven_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
                                 HAL_MOTOR_BRAKE == 3);
 
+#define ALL_MOTORS 0x07
+#define SET(value) OUTPUTS_CHANGE(0xFF, value)
+#define STOP OUTPUTS_CHANGE(RCX_MOTOR_ON | RCX_MOTOR_BRAKE, RCX_MOTOR_BRAKE) /* off, braked, the rest kept */
+
+/* firm0328 reads 0x4F (off = brake, forward, power 7) for every output right after it has started and after it
+ * was switched off (reference-firmware.md), which is also the state of spec p. 98 for starting a program; the
+ * port's latch floats until then. */
 void outputs_init(struct rcx *b)
 {
-    u8 i;
-    for (i = 0; i < RCX_MOTORS; i++) {
-        b->out.motor[i] = RCX_MOTOR_FWD | 7;
-        b->out.global[i] = RCX_MOTOR_ON | RCX_MOTOR_FWD | 7;
-    }
-    /* applied[] stays 0 (float, level 0): what the port's motor latch holds at start-up. */
+    outputs_update(b, OUTPUTS_GLOBAL | ALL_MOTORS, SET(RCX_MOTOR_ON | RCX_MOTOR_FWD | 7));
+    outputs_program_start(b);
 }
 
 /* Motor status as firm0328 reports it: the effective output after global invert, max power and disconnect. */
@@ -101,27 +104,26 @@ u8 outputs_global_status(const struct rcx *b, u8 i)
     return (u8)((b->out.global[i] & 0x8F) | 0x30);
 }
 
-#define ALL_MOTORS 0x07
-#define STOP 0 /* for rewrite(): off, braked, the rest of the register kept */
-
-/* Set the registers of the motors in `list` (bit 0 A, 1 B, 2 C) to `value`, or stop them (STOP). */
-static void rewrite(struct rcx *b, u8 list, u8 value)
+void outputs_update(struct rcx *b, u8 list, u16 change)
 {
-    u8 *m;
-    for (m = b->out.motor, list &= ALL_MOTORS; list; list >>= 1, m++)
+    u8 *reg = (list & OUTPUTS_GLOBAL) ? b->out.global : b->out.motor, n = RCX_MOTORS;
+    u8 clear = (u8)(change >> 8), flip = (u8)change;
+
+    for (; n; n--, reg++, list >>= 1)
         if (list & 1)
-            *m = value != STOP ? value : (u8)((*m & ~RCX_MOTOR_ON) | RCX_MOTOR_BRAKE);
+            *reg = (u8)((*reg & ~clear) ^ flip);
     outputs_changed(b);
 }
 
+
 void outputs_program_start(struct rcx *b)
 {
-    rewrite(b, ALL_MOTORS, RCX_MOTOR_FWD | RCX_MOTOR_BRAKE | 7);
+    outputs_update(b, ALL_MOTORS, SET(RCX_MOTOR_FWD | RCX_MOTOR_BRAKE | 7));
 }
 
 void outputs_program_stop(struct rcx *b)
 {
-    rewrite(b, ALL_MOTORS, STOP);
+    outputs_update(b, ALL_MOTORS, STOP);
 }
 
 /*
@@ -135,12 +137,12 @@ void outputs_remote(struct rcx *b, u8 fwd_mask, u8 rev_mask)
         outputs_program_start(b);
         return;
     }
-    rewrite(b, (u8)(rev_mask & ~fwd_mask), RCX_MOTOR_ON | 7);
-    rewrite(b, fwd_mask, RCX_MOTOR_ON | RCX_MOTOR_FWD | 7);
+    outputs_update(b, (u8)(rev_mask & ~fwd_mask & ALL_MOTORS), SET(RCX_MOTOR_ON | 7));
+    outputs_update(b, (u8)(fwd_mask & ALL_MOTORS), SET(RCX_MOTOR_ON | RCX_MOTOR_FWD | 7));
 }
 
 /* Resource bits of spec p. 106: 0x01 A, 0x02 B, 0x08 C (0x04 is the sound). */
 void outputs_revoked(struct rcx *b, u8 resources)
 {
-    rewrite(b, (u8)((resources & 0x03) | ((resources >> 1) & 0x04)), STOP);
+    outputs_update(b, (u8)((resources & 0x03) | ((resources >> 1) & 0x04)), STOP);
 }

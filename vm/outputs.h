@@ -26,11 +26,17 @@ struct rcx_outputs {
 };
 #define outputs_mode(b, i) ((u8)((b)->out.applied[i] & 3)) /* enum hal_motor_mode now on the wire */
 
-void outputs_init(struct rcx *b);          /* power-on: forward, float, full power (spec p. 98) */
+void outputs_init(struct rcx *b);          /* power-on and switching off: connected; forward, brake, full power */
 void outputs_changed(struct rcx *b);       /* registers were written: recompute and apply */
 void outputs_tick(struct rcx *b);          /* every 1 ms */
 u8 outputs_status(const struct rcx *b, u8 motor);  /* source 3 */
 u8 outputs_global_status(const struct rcx *b, u8 motor); /* source 17 */
+
+/* Registers of the motors in `list` (bit 0 A, 1 B, 2 C; with OUTPUTS_GLOBAL the global ones): the bits of
+ * OUTPUTS_CHANGE's `clear` cleared, then those of its `flip` flipped; then the result is applied. */
+#define OUTPUTS_GLOBAL 0x08
+#define OUTPUTS_CHANGE(clear, flip) ((u16)((clear) << 8 | (flip)))
+void outputs_update(struct rcx *b, u8 list, u16 change);
 
 /* The motor scheme of spec p. 98, for the user interface and the remote control. */
 void outputs_program_start(struct rcx *b); /* Run pressed: forward, brake, max power */

@@ -105,7 +105,8 @@ struct rcx {
     u8 arena[RCX_ARENA_SIZE];
 };
 
-/* Power-on state: empty memory, variables zero, program slot 0. `arena_addr` is the arena's address on the brick. */
+/* Power-on state: empty memory, variables zero, program slot 0, outputs braked (told to the hardware, so attach
+ * rcx.port first: it is kept). `arena_addr` is the arena's address on the brick. */
 void vm_init(struct rcx *b, u16 arena_addr);
 
 /* One millisecond has passed. */
@@ -130,6 +131,7 @@ void sched_select_program(struct rcx *b, u8 prog, u8 from_program);
 /* Sources (vm/sources.c). `t` is the task asking, NULL for a direct command (no locals). */
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index);
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value);
+s16 source_poll(struct rcx *b, const u8 *cmd); /* direct Poll: 0x8000 for what does not exist */
 s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n); /* NULL when n is not a variable here */
 
 /* Program memory (vm/progmem.c). */

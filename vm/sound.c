@@ -15,7 +15,7 @@ static const u16 sound_tones[] = { 1389, 1295, 1196, 1096, 996, 893, 796, 694, 5
 #define REST 12
 
 /* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. */
-static const u8 note_lengths[] = { 0, 1, 3, 5, 6, 15, 100 };
+static const u8 note_lengths[] = { 0, 2, 4, 16, 6, 7, 100 };
 #define NOTE(tone, code) ((u8)((code) << 4 | (tone)))
 #define SWEEP(code, a, b, c, d, e, f, g, h, i, j) NOTE(a, code), NOTE(b, code), NOTE(c, code), NOTE(d, code), \
     NOTE(e, code), NOTE(f, code), NOTE(g, code), NOTE(h, code), NOTE(i, code), NOTE(j, code)
@@ -23,18 +23,19 @@ static const u8 note_lengths[] = { 0, 1, 3, 5, 6, 15, 100 };
 /*
  * The system sounds, numbered as nqc's SOUND_* constants and rcx-hardware.md §3.7, as notes from system_start[n]
  * to the next 0. Spec p. 29 lists 2 as "sweep up" and 3 as "sweep down"; the ROM tables and nqc both have 2 falling
- * and 3 rising, and programs are written against nqc. The 0 in front is where a tone's entry points once its one
- * note has started.
+ * and 3 rising, and programs are written against nqc. The note lengths are firm0328's (reference-firmware.md), each
+ * 10 ms longer than §3.7's; the pitches are the exact ones. The 0 in front is where a tone's entry points once its
+ * one note has started.
  */
 #define NO_NOTES 0
 static const u8 system_notes[] = {
     0,
-    NOTE(TONE_CLICK, 1), NOTE(REST, 2), 0,                                   /* key click: 10 ms, 30 ms silence */
-    NOTE(TONE_BEEP, 5), NOTE(REST, 3), NOTE(TONE_BEEP, 5), NOTE(REST, 3), 0, /* beep-beep: 150 ms on, 50 off, twice */
-    SWEEP(4, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9), 0,                               /* sweep down: 60 ms per step */
-    SWEEP(4, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* sweep up */
+    NOTE(TONE_CLICK, 1), NOTE(REST, 2), 0,                                   /* key click: 20 ms, 40 ms silence */
+    NOTE(TONE_BEEP, 3), NOTE(REST, 4), NOTE(TONE_BEEP, 3), NOTE(REST, 4), 0, /* beep-beep: 160 ms on, 60 off, twice */
+    SWEEP(5, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9), 0,                               /* sweep down: 70 ms per step */
+    SWEEP(5, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* sweep up */
     NOTE(TONE_BUZZ, 6), 0,                                                   /* error buzz: 1 s */
-    SWEEP(2, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* fast sweep up: 30 ms per step */
+    SWEEP(2, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0), 0,                               /* fast sweep up: 40 ms per step */
 };
 static const u8 system_start[SOUND_SYSTEM_SOUNDS] = { 1, 4, 9, 20, 31, 33 };
 RCX_STATIC_ASSERT(system_notes_as_counted, sizeof system_notes == 44); /* system_start[] follows these lengths */
@@ -52,10 +53,13 @@ static void enqueue(struct rcx *b, u16 hz, u8 len)
     }
 }
 
+/* Duration 0 plays 10 ms, as firm0328 does (reference-firmware.md). */
 void sound_tone(struct rcx *b, u16 hz, u8 dur10)
 {
-    if (b->sound.muted || !dur10)
+    if (b->sound.muted)
         return;
+    if (!dur10)
+        dur10 = 1;
     if (hz < SOUND_MIN_HZ || hz > SOUND_MAX_HZ)
         hz = 0;
     enqueue(b, hz, dur10);

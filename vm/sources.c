@@ -120,6 +120,17 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     return RCX_FIRMWARE_VERSION;       /* the last source without a field */
 }
 
+/* Poll (0x12 source index): a source, index or variable that does not exist for a direct command (no task: no
+ * locals) answers 0x8000, as firm0328 does (reference-firmware.md). */
+s16 source_poll(struct rcx *b, const u8 *cmd)
+{
+    u8 src = cmd[1], index = cmd[2];
+
+    if (!row(src, index, LIMIT_EXISTS) || (src == RCX_SRC_VAR && index >= RCX_GLOBALS))
+        return (s16)-32768;
+    return source_get(b, NULL, src, index);
+}
+
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 {
     const struct source_row *r;

@@ -4,7 +4,10 @@
 
 void vm_init(struct rcx *b, u16 arena_addr)
 {
+    void *port = b->port;
+
     memset(b, 0, sizeof *b);
+    b->port = port;
     b->arena_addr = arena_addr;
     b->random = 0xACE1;
     b->battery_mv = 9000;

@@ -35,13 +35,14 @@ sleep 0.3
 nqc_on "$T" -raw 10 >/dev/null
 nqc_on "$T" -remote 0000 1 || fail "-remote 0"
 sleep 0.3
-[ -n "$(traced '"motor":"A","dir":"brake"')" ] || fail "motor A not braked on release (spec p. 98)"
+[ "$(grep -F '"motor":"A"' "$TRACE" | tail -n 1 | grep -c '"dir":"brake"')" = 1 ] ||
+    fail "motor A not braked on release (spec p. 98)"
 
-# The sound button: system sound 1, beep-beep at 996 Hz.
+# The sound button: system sound 1, beep-beep at 996 Hz, 160 ms per beep as firm0328 plays it.
 nqc_on "$T" -raw 10 >/dev/null
 nqc_on "$T" -remote 0080 1 || fail "-remote sound"
 sleep 0.5
-[ -n "$(traced '"sound":996,"ms":150')" ] || fail "no beep"
+[ -n "$(traced '"sound":996,"ms":160')" ] || fail "no beep"
 
 # Stop program & motors (low byte 40): a program counting for ever stops counting.
 nqc_on "$T" -TRCX2 -d -pgm 4 "$E2E_DIR/forever.nqc" -run >/dev/null || fail "download forever"

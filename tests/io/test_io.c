@@ -287,15 +287,16 @@ static void rotation(void **state)
 static void sound(void **state)
 {
     static const struct timed want[] = {
-        /* nqc's download ends with system sound 5, fast sweep up: ten steps of 30 ms from 498 Hz */
-        { 1, 498, 0, 0 }, { 31, 598, 0, 0 }, { 61, 694, 0, 0 }, { 91, 796, 0, 0 }, { 121, 893, 0, 0 },
-        { 151, 996, 0, 0 }, { 181, 1096, 0, 0 }, { 211, 1196, 0, 0 }, { 241, 1295, 0, 0 }, { 271, 1389, 0, 0 },
-        { 301, 440, 0, 0 },            /* PlayTone(440, 20): 200 ms */
-        { 501, 0, 0, 0 },              /* PlayTone(0, 10): 100 ms rest */
-        { 601, 1984, 0, 0 },           /* key click: 10 ms of 1984 Hz ... */
-        { 611, 0, 0, 0 },              /* ... and 30 ms of silence */
-        { 641, 880, 0, 0 },            /* PlayTone(880, 5) */
-        { 691, 0, 0, 0 },
+        /* nqc's download ends with system sound 5, fast sweep up: ten steps of 40 ms from 498 Hz (firm0328's
+         * note lengths, reference-firmware.md) */
+        { 1, 498, 0, 0 }, { 41, 598, 0, 0 }, { 81, 694, 0, 0 }, { 121, 796, 0, 0 }, { 161, 893, 0, 0 },
+        { 201, 996, 0, 0 }, { 241, 1096, 0, 0 }, { 281, 1196, 0, 0 }, { 321, 1295, 0, 0 }, { 361, 1389, 0, 0 },
+        { 401, 440, 0, 0 },            /* PlayTone(440, 20): 200 ms */
+        { 601, 0, 0, 0 },              /* PlayTone(0, 10): 100 ms rest */
+        { 701, 1984, 0, 0 },           /* key click: 20 ms of 1984 Hz ... */
+        { 721, 0, 0, 0 },              /* ... and 40 ms of silence */
+        { 761, 880, 0, 0 },            /* PlayTone(880, 5) */
+        { 811, 0, 0, 0 },
         /* Wait(200) ends at 2 000 ms: muted, two sounds ignored, unmuted, the tone from the variable */
         { 2001, 660, 0, 0 },
         { 2101, 0, 0, 0 },
@@ -313,7 +314,7 @@ static void sound(void **state)
 static u16 display_wave(unsigned input, unsigned t)
 {
     (void)t;
-    return input == 0 ? 520 : 1023;  /* 29.5 C on input 1 */
+    return input == 0 ? 520 : input == 1 ? 150 : 1023; /* 29.5 C on input 1; input 2 (no type) reads pressed */
 }
 
 static void expect_glass(struct io *io, unsigned t, const char *text)
@@ -325,6 +326,16 @@ static void expect_glass(struct io *io, unsigned t, const char *text)
     bad = lcd_reads(img, text);
     if (bad)
         fail_msg("at %u ms the LCD does not read \"%s\" (byte %d: %02X)", t, text, bad - 1, img[bad - 1]);
+}
+
+/* The watch: its point blinks (reference-firmware.md), so either reading is right. */
+static void expect_watch(struct io *io, unsigned t, const char *with_point, const char *without)
+{
+    const u8 *img;
+    io_run_until(io, t);
+    img = fake_hal_of(io->b)->lcd;
+    if (lcd_reads(img, with_point) && lcd_reads(img, without))
+        fail_msg("at %u ms the LCD reads neither \"%s\" nor \"%s\"", t, with_point, without);
 }
 
 static void display(void **state)
@@ -339,10 +350,14 @@ static void display(void **state)
     for (s = 0; s < 7; s++)
         assert_int_equal(lcd_lit(img, lcd_map[0][s]), lcd_lit(one, lcd_map[0][s]));
     expect_glass(io, 750, "29.5");          /* SelectDisplay(DISPLAY_SENSOR_1): Celsius in tenths */
-    assert_true(lcd_lit(img, lcd_input_selected[0]) && lcd_lit(img, lcd_input_active[0]));
-    expect_glass(io, 1250, "7.45");         /* SetWatch(7, 45) selects the watch */
+    assert_true(lcd_lit(img, lcd_input_selected[0]));
+    /* An input's mark is lit while it reads pressed, whatever its type (reference-firmware.md): not input 1 at raw
+     * 520, but input 2 at raw 150 though it has no type. */
+    assert_false(lcd_lit(img, lcd_input_active[0]) || lcd_lit(img, lcd_input_active[2]));
+    assert_true(lcd_lit(img, lcd_input_active[1]));
+    expect_watch(io, 1250, "07.45", "0745"); /* SetWatch(7, 45) selects the watch: four digits */
     assert_false(lcd_lit(img, lcd_input_selected[0]));
-    expect_glass(io, 1750, "4");            /* output B, power 4, running backwards */
+    expect_glass(io, 1750, "5");            /* output B, power 4, running backwards: power + 1 */
     assert_true(lcd_lit(img, lcd_output_selected[1]) && lcd_lit(img, lcd_output_rev[1]));
     assert_false(lcd_lit(img, lcd_output_fwd[1]));
     for (s = 0; io->now < 2240; s |= 1 << lcd_figure(img))
@@ -363,9 +378,11 @@ enum { FLOAT = HAL_MOTOR_FLOAT, REV = HAL_MOTOR_REV, FWD = HAL_MOTOR_FWD, BRAKE 
 static void motors(void **state)
 {
     static const struct timed want[] = {
+        { 0, A, BRAKE, 7 },            /* power-on: all braked (reference-firmware.md) */
+        { 0, B, BRAKE, 7 },
+        { 0, C, BRAKE, 7 },            /* ... and C stays so: SetGlobalOutput(OUT_C, OUT_OFF); On(OUT_C) */
         { 0, A, FWD, 7 },              /* OnFwd(OUT_A) */
         { 0, B, FWD, 2 },              /* SetMaxPower(OUT_B, 2); On(OUT_B) */
-        { 0, C, BRAKE, 7 },            /* SetGlobalOutput(OUT_C, OUT_OFF): on, but held braked */
         { 500, A, BRAKE, 7 },          /* Rev(OUT_A): 60 ms braked ... */
         { 560, A, REV, 7 },            /* ... then backwards */
         { 1000, A, REV, 3 },           /* SetPower(OUT_A, 3) */

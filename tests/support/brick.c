@@ -5,12 +5,12 @@
 
 struct rcx *brick_new(void)
 {
-    struct rcx *b = malloc(sizeof *b);
+    struct rcx *b = calloc(1, sizeof *b);
     struct fake_hal *h = calloc(1, sizeof *h);
     if (!b || !h)
         abort();
+    b->port = h; /* vm_init keeps it: the outputs are set up through it */
     vm_init(b, TEST_ARENA_ADDR);
-    b->port = h; /* vm_init clears the whole struct, so the port is attached after it */
     return b;
 }
 

@@ -35,18 +35,23 @@ static unsigned freemem(struct rcx *b)
     return (unsigned)(w[W_TOP] - w[W_FREE]);
 }
 
-static void setlog(struct rcx *b, u16 n)
+/* firm0328 answers a status after the opcode: AD 00 when the log was made, AD 01 when memory is short
+ * (reference-firmware.md, "The brick's face"). Returns the status. */
+static u8 setlog(struct rcx *b, u16 n)
 {
     u8 r[RCX_REPLY_MAX];
-    assert_int_equal(SEND(b, r, 0x52, (u8)n, (u8)(n >> 8)), 1);
+    assert_int_equal(SEND(b, r, 0x52, (u8)n, (u8)(n >> 8)), 2);
     assert_int_equal(r[0], 0xAD);
+    return r[1];
 }
 
+/* DataLogNext answers 9D 00 (reference-firmware.md). */
 static void lognext(struct rcx *b, u8 src, u8 idx)
 {
     u8 r[RCX_REPLY_MAX];
-    assert_int_equal(SEND(b, r, 0x62, src, idx), 1);
+    assert_int_equal(SEND(b, r, 0x62, src, idx), 2);
     assert_int_equal(r[0], 0x9D);
+    assert_int_equal(r[1], 0x00);
 }
 
 /* Entry 0's value: entries used including entry 0 (p. 54, p. 84). */
@@ -80,8 +85,9 @@ static void setdatalog_creates_entry0(void **state)
     u16 w[94];
     unsigned f = freemem(b);
     (void)state;
-    assert_int_equal(SEND(b, r, 0x5A, 5, 0), 1);
+    assert_int_equal(SEND(b, r, 0x5A, 5, 0), 2);
     assert_int_equal(r[0], 0xA5);                         /* p. 54 */
+    assert_int_equal(r[1], 0x00);                         /* made */
     /* What nqc -datalog sends first: A4 00 00 01 00 -> type 0xFF, value 1. */
     assert_int_equal(SEND(b, r, 0xA4, 0x00, 0x00, 0x01, 0x00), 4);
     assert_int_equal(r[0], 0x5B);
@@ -293,14 +299,31 @@ static void largest_log_with_6100_bytes_free(void **state)
     if (f > 6100)
         assert_int_equal(brick_download(b, 1, 9, pad, f - 6100), 0);
     assert_int_equal(freemem(b), 6100);
-    setlog(b, 2033);
+    assert_int_equal(setlog(b, 2033), 1);                 /* AD 01: not enough memory */
     lognext(b, 14, 0);
     assert_int_equal(log_count(b), 1);                    /* refused: 2034 * 3 = 6102 > 6100 */
-    setlog(b, 2032);
+    assert_int_equal(setlog(b, 2032), 0);                 /* AD 00 */
     lognext(b, 14, 0);
     assert_int_equal(log_count(b), 2);                    /* accepted */
     assert_int_equal(freemem(b), 1);
     free(pad);
+    brick_free(b);
+}
+
+/* The two replies observed on firm0328 (reference-firmware.md, "The brick's face"): 52 00 FF (65 280 entries) is
+ * refused with AD 01 and leaves no log; a log that fits answers AD 00. */
+static void setdatalog_status(void **state)
+{
+    struct rcx *b = brick_new();
+    (void)state;
+    assert_int_equal(setlog(b, 0xFF00), 1);
+    assert_int_equal(log_count(b), 1);                    /* no log: entry 0 reports an empty one */
+    assert_int_equal(setlog(b, 0), 0);
+    assert_int_equal(setlog(b, 100), 0);
+    lognext(b, 14, 0);
+    assert_int_equal(log_count(b), 2);
+    assert_int_equal(setlog(b, 0xFF00), 1);               /* a refused log also drops the one there was */
+    assert_int_equal(log_count(b), 1);
     brick_free(b);
 }
 
@@ -355,6 +378,7 @@ int main(void)
         cmocka_unit_test(upload_zero_entries),
         cmocka_unit_test(log_memory_and_replacement),
         cmocka_unit_test(largest_log_with_6100_bytes_free),
+        cmocka_unit_test(setdatalog_status),
         cmocka_unit_test(download_moves_log_intact),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -110,8 +110,8 @@ static const struct dcmd table[] = {
     { { 0x22, 0x0C, 0x1E }, 3, 0xD5, 1 },                /* p. 51 SetWatch */
     { { 0x32, 0x00, 0x01 }, 3, 0xC5, 1 },                /* p. 52 SetSensorType */
     { { 0x42, 0x00, 0x20 }, 3, 0xB5, 1 },                /* p. 53 SetSensorMode (reply illegible in the OCR: ~0x42) */
-    { { 0x52, 0x05, 0x00 }, 3, 0xA5, 1 },                /* p. 54 SetDataLog */
-    { { 0x62, 0x00, 0x00 }, 3, 0x95, 1 },                /* p. 55 DataLogNext */
+    { { 0x52, 0x05, 0x00 }, 3, 0xA5, 2 },                /* p. 54 SetDataLog, and a status (reference-firmware.md) */
+    { { 0x62, 0x00, 0x00 }, 3, 0x95, 2 },                /* p. 55 DataLogNext, and a status (reference-firmware.md) */
     { { 0xC2, 0x00, 0x02 }, 3, 0, 0 },                   /* p. 60 SendUARTData: no reply */
     { { 0xD2, 0x00, 0x00 }, 3, 0, 0 },                   /* p. 61 RemoteCommand: no reply */
     { { 0x03, 0x02, 0x00, 0x00 }, 4, 0xF4, 1 },          /* p. 63 DirectEvent */
@@ -248,7 +248,16 @@ static void poll_values_and_locals(void **state)
         assert_int_equal(r[1], 0x00);
         assert_int_equal(r[2], 0x80);
     }
-    assert_int_equal(poll(b, 0, 48), 0);                  /* not a variable at all: reads 0 */
+    /* What does not exist answers 0x8000 too (reference-firmware.md, "The brick's face"): 12 00 FF (no such
+     * variable), 12 FF 00 (no such source), and by the same rule an index a source does not have. */
+    assert_int_equal((u16)poll(b, 0, 0xFF), 0x8000);
+    assert_int_equal((u16)poll(b, 0, 48), 0x8000);
+    assert_int_equal((u16)poll(b, 0xFF, 0), 0x8000);
+    assert_int_equal((u16)poll(b, 37, 0), 0x8000);        /* one past the last source */
+    assert_int_equal((u16)poll(b, 5, 0), 0x8000);         /* sources 5-7 are not in the table of pp. 6-10 */
+    assert_int_equal((u16)poll(b, 9, 3), 0x8000);         /* input 4 */
+    assert_int_equal((u16)poll(b, 3, 3), 0x8000);         /* output D */
+    assert_int_equal(poll(b, 9, 2), 0);                   /* input 3 exists and reads 0 */
     /* Every readable source of pp. 6-10 answers ~op, LO, HI. */
     for (v = 0; v < sizeof readable; v++) {
         assert_int_equal(SEND(b, r, 0x1A, readable[v], 0), 3);

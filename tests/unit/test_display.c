@@ -32,6 +32,20 @@ static void expect_number(struct rcx *b, const char *text)
         fail_msg("\"%s\": byte %d of the image is wrong (%02X)", text, bad - 1, img[bad - 1]);
 }
 
+/* The watch: its point blinks, so the glass reads `text` or `text` without its point. */
+static void expect_watch(struct rcx *b, const char *text)
+{
+    const u8 *img = glass(b);
+    char bare[8];
+    unsigned i, j;
+    for (i = j = 0; text[i]; i++)
+        if (text[i] != '.')
+            bare[j++] = text[i];
+    bare[j] = 0;
+    if (lcd_reads(img, text) && lcd_reads(img, bare))
+        fail_msg("the watch does not read \"%s\"", text);
+}
+
 static void user_view(struct rcx *b, u8 places, u8 src, u16 value)
 {
     u8 c[6] = { 0xE5, 0, places, src, (u8)value, (u8)(value >> 8) };
@@ -106,27 +120,61 @@ static void program_number_digit(void **state)
     brick_free(b);
 }
 
+/* Four digits with the leading zero, as firm0328 shows the watch (reference-firmware.md, "The brick's face"). */
 static void watch_view(void **state)
 {
     struct rcx *b = brick_new();
     u8 set[3] = { 0x22, 12, 34 };
     unsigned ms;
     (void)state;
-    expect_number(b, "0.00");          /* power-on: the watch at 00:00 */
+    expect_watch(b, "00.00");          /* power-on: the watch at 00:00 */
     brick_cmd(b, set, 3, NULL);
-    expect_number(b, "12.34");
+    expect_watch(b, "12.34");
     set[1] = 23;
     set[2] = 59;
     user_view(b, 0, 2, 77);
     brick_cmd(b, set, 3, NULL);        /* SetWatch selects the watch (spec p. 51) */
-    expect_number(b, "23.59");
+    expect_watch(b, "23.59");
     for (ms = 0; ms < 60000; ms++)
         vm_tick(b);
-    expect_number(b, "0.00");
+    expect_watch(b, "00.00");
+    set[1] = 9;
+    set[2] = 30;
+    brick_cmd(b, set, 3, NULL);
+    expect_watch(b, "09.30");
     set[1] = 0;
     set[2] = 5;
     brick_cmd(b, set, 3, NULL);
-    expect_number(b, "0.05");
+    expect_watch(b, "00.05");
+    brick_free(b);
+}
+
+/* The watch's point blinks like a clock's: about 0.78 s lit, 0.78 s dark; the digits stay. */
+static void watch_point_blinks(void **state)
+{
+    struct rcx *b = brick_new();
+    struct fake_hal *h = fake_hal_of(b);
+    unsigned ms, lit_ms = 0, changes = 0, last_change = 0, period_ok = 0;
+    int was = -1;
+    (void)state;
+    for (ms = 0; ms < 10000; ms++) {
+        int now;
+        vm_tick(b);
+        if (lcd_reads(h->lcd, "00.00") && lcd_reads(h->lcd, "0000"))
+            fail_msg("at %u ms the watch reads neither 00.00 nor 0000", ms);
+        now = lcd_lit(h->lcd, lcd_point_right_of[3]);
+        lit_ms += (unsigned)now;
+        if (was >= 0 && now != was) {
+            if (changes > 0 && ms - last_change >= 770 && ms - last_change <= 790)
+                period_ok++;
+            changes++;
+            last_change = ms;
+        }
+        was = now;
+    }
+    assert_true(changes >= 12);               /* 10 s / 0.78 s */
+    assert_int_equal(period_ok, changes - 1); /* every phase 0.77-0.79 s */
+    assert_true(lit_ms > 4500 && lit_ms < 5500);
     brick_free(b);
 }
 
@@ -147,14 +195,12 @@ static void input_views_and_marks(void **state)
     select_view(b, 1);
     expect_number(b, "29.5");          /* tenths shown with one decimal place */
     img = glass(b);
-    assert_true(lcd_lit(img, selected[0]) && lcd_lit(img, active[0]));
-    assert_false(lcd_lit(img, selected[1]) || lcd_lit(img, active[1]));
-    assert_false(lcd_lit(img, selected[2]) || lcd_lit(img, active[2]));
+    assert_true(lcd_lit(img, selected[0]));
+    assert_false(lcd_lit(img, selected[1]) || lcd_lit(img, selected[2]));
     select_view(b, 2);                 /* input 2: no type set, raw value */
     expect_number(b, "700");
     img = glass(b);
     assert_true(lcd_lit(img, selected[1]) && !lcd_lit(img, selected[0]));
-    assert_false(lcd_lit(img, active[1]));
     type[1] = 2;
     type[2] = 4;
     brick_cmd(b, type, 3, NULL);       /* input 3: rotation */
@@ -165,8 +211,44 @@ static void input_views_and_marks(void **state)
     sensor_sample(b, 2, 640);
     expect_number(b, "-1");
     img = glass(b);
-    assert_true(lcd_lit(img, selected[2]) && lcd_lit(img, active[2]) && lcd_lit(img, active[0]));
+    assert_true(lcd_lit(img, selected[2]));
+    for (i = 0; i < 3; i++)            /* 520, 700, 640: none reads pressed */
+        assert_false(lcd_lit(img, active[i]));
     brick_free(b);
+}
+
+/*
+ * An input's mark is lit while the input reads pressed, its boolean value with the usual thresholds, whatever its
+ * type and also with none (reference-firmware.md, "The brick's face": lit at raw 100 and 300, dark at 700 and 1023).
+ */
+static void input_marks_follow_the_boolean(void **state)
+{
+    static const struct { u16 raw; int lit; } steps[] = {
+        { 1023, 0 }, { 100, 1 }, { 700, 0 }, { 300, 1 }, { 500, 1 }, /* 460-562: no change */
+        { 1023, 0 }, { 500, 0 },
+    };
+    static const u8 types[] = { 0, 1, 3, 2 }; /* none, touch, light, temperature */
+    unsigned t, i, n;
+    (void)state;
+    for (t = 0; t < sizeof types; t++) {
+        struct rcx *b = brick_new();
+        u8 type[3] = { 0x32, 0, types[t] };
+        for (n = 0; n < 3; n++) {
+            type[1] = (u8)n;
+            brick_cmd(b, type, 3, NULL);
+        }
+        for (i = 0; i < sizeof steps / sizeof steps[0]; i++) {
+            const u8 *img;
+            for (n = 0; n < 3; n++)
+                sensor_sample(b, (u8)n, n == 1 ? 1023 : steps[i].raw); /* input 2 stays released */
+            img = glass(b);
+            if (lcd_lit(img, lcd_input_active[0]) != steps[i].lit || lcd_lit(img, lcd_input_active[2]) != steps[i].lit)
+                fail_msg("type %u, raw %u: input marks %d/%d, expected %d", types[t], steps[i].raw,
+                         lcd_lit(img, lcd_input_active[0]), lcd_lit(img, lcd_input_active[2]), steps[i].lit);
+            assert_false(lcd_lit(img, lcd_input_active[1]));
+        }
+        brick_free(b);
+    }
 }
 
 static void output_views_and_arrows(void **state)
@@ -187,20 +269,23 @@ static void output_views_and_arrows(void **state)
     c[0] = 0x13; c[1] = 0x04; c[2] = 2; c[3] = 3; /* C power 3 */
     brick_cmd(b, c, 4, NULL);
     select_view(b, 6);
-    expect_number(b, "3");
+    expect_number(b, "4");             /* running: power + 1, as firm0328 shows it (reference-firmware.md) */
     img = glass(b);
     assert_true(lcd_lit(img, fwd[0]) && !lcd_lit(img, rev[0]));
     assert_true(lcd_lit(img, rev[1]) && !lcd_lit(img, fwd[1]));
     assert_true(lcd_lit(img, fwd[2]) && !lcd_lit(img, rev[2]));
     assert_true(lcd_lit(img, selected[2]) && !lcd_lit(img, selected[0]) && !lcd_lit(img, selected[1]));
     select_view(b, 4);
-    expect_number(b, "7");
+    expect_number(b, "8");
     img = glass(b);
     assert_true(lcd_lit(img, selected[0]) && !lcd_lit(img, selected[2]));
-    c[0] = 0x21; c[1] = 0x41;          /* A off: no arrow */
+    c[0] = 0x21; c[1] = 0x41;          /* A off: no arrow, and 0 */
     brick_cmd(b, c, 2, NULL);
-    c[1] = 0x02;                       /* B float: no arrow */
+    expect_number(b, "0");
+    c[1] = 0x02;                       /* B float: no arrow, and 0 */
     brick_cmd(b, c, 2, NULL);
+    select_view(b, 5);
+    expect_number(b, "0");
     img = glass(b);
     assert_false(lcd_lit(img, fwd[0]) || lcd_lit(img, rev[0]));
     assert_false(lcd_lit(img, fwd[1]) || lcd_lit(img, rev[1]));
@@ -208,34 +293,61 @@ static void output_views_and_arrows(void **state)
     brick_free(b);
 }
 
+/* The figure walks while a task runs or waits, changing frame every 260 ms, steadily (reference-firmware.md). */
 static void running_figure(void **state)
 {
     static const u8 wait_loop[] = { 0x43, 0x02, 0x0A, 0x00, 0x27, 0x85 }; /* Wait 10; jump back to the Wait */
     struct rcx *b = brick_new();
     struct fake_hal *h = fake_hal_of(b);
-    unsigned ms, seen[3] = { 0, 0, 0 }, changes = 0;
+    unsigned ms, seen[3] = { 0, 0, 0 }, changes = 0, last_change = 0;
     u8 stop_all = 0x50;
-    int last = 0;
+    int last = 1;
     (void)state;
     assert_int_equal(lcd_figure(glass(b)), 1);
     assert_int_equal(brick_download(b, 1, 0, wait_loop, sizeof wait_loop), 0);
     brick_start(b, 0);
-    for (ms = 0; ms < 2000; ms++) {    /* the task waits almost all the time: it still counts as running */
+    for (ms = 0; ms < 3000; ms++) {    /* the task waits almost all the time: it still counts as running */
         vm_run(b, 10);
         vm_tick(b);
         seen[lcd_figure(h->lcd)]++;
-        if (lcd_figure(h->lcd) != last)
+        if (lcd_figure(h->lcd) != last) {
+            if (changes > 0 && ms - last_change != 260)
+                fail_msg("the figure changed %u ms after the change before, not 260", ms - last_change);
             changes++;
+            last_change = ms;
+        }
         last = lcd_figure(h->lcd);
     }
     assert_int_equal(seen[0], 0);
-    assert_true(seen[2] > 500 && seen[1] > 500);
-    assert_true(changes >= 5);         /* alternating, not a one-off */
+    assert_true(seen[2] > 1200 && seen[1] > 1200);
+    assert_true(changes >= 10);        /* 3 s / 0.26 s */
     brick_cmd(b, &stop_all, 1, NULL);
     assert_int_equal(lcd_figure(glass(b)), 1);
     for (ms = 0; ms < 1000; ms++)
         vm_tick(b);
     assert_int_equal(lcd_figure(h->lcd), 1);
+    brick_free(b);
+}
+
+/* The IR mark (the lower arc) is lit for a moment, 0.25-0.8 s, whenever the IR layer reports activity. */
+static void ir_mark_lit_for_a_moment(void **state)
+{
+    struct rcx *b = brick_new();
+    struct fake_hal *h = fake_hal_of(b);
+    unsigned ms, lit = 0;
+    (void)state;
+    assert_false(lcd_lit(glass(b), SG(6, 2)));
+    display_ir_activity(b);
+    for (ms = 0; ms < 2000; ms++) {
+        vm_tick(b);
+        if (lcd_lit(h->lcd, SG(6, 2))) {
+            if (lit != ms)
+                fail_msg("the IR mark went dark and came back");
+            lit++;
+        }
+    }
+    assert_true(lit >= 250 && lit <= 800);
+    assert_false(lcd_lit(h->lcd, SG(6, 3)));
     brick_free(b);
 }
 
@@ -271,6 +383,7 @@ static void lcd_written_only_on_change(void **state)
     struct fake_hal *h = fake_hal_of(b);
     unsigned ms;
     (void)state;
+    select_view(b, 2);                  /* not the watch: its point blinks */
     for (ms = 1; ms <= DISPLAY_REFRESH_MS && !h->lcd_calls; ms++)
         vm_tick(b);
     assert_int_equal(h->lcd_calls, 1);  /* the first image within one refresh period */
@@ -304,7 +417,7 @@ static void user_view_sources(void **state)
     brick_cmd(b, set_var, 5, NULL);
     expect_number(b, "115.7");
     select_view(b, 0);
-    expect_number(b, "0.00");
+    expect_watch(b, "00.00");
     select_view(b, 7);                   /* back to the same user selection */
     expect_number(b, "115.7");
     user_view(b, 0, 0, 40);              /* a local variable cannot be shown (spec p. 97): 0 */
@@ -360,9 +473,12 @@ int main(void)
         cmocka_unit_test(numbers_signs_points_and_overflow),
         cmocka_unit_test(program_number_digit),
         cmocka_unit_test(watch_view),
+        cmocka_unit_test(watch_point_blinks),
         cmocka_unit_test(input_views_and_marks),
+        cmocka_unit_test(input_marks_follow_the_boolean),
         cmocka_unit_test(output_views_and_arrows),
         cmocka_unit_test(running_figure),
+        cmocka_unit_test(ir_mark_lit_for_a_moment),
         cmocka_unit_test(runtime_marks),
         cmocka_unit_test(lcd_written_only_on_change),
         cmocka_unit_test(user_view_sources),

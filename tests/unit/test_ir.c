@@ -348,6 +348,51 @@ static void garbage_never_hangs_the_receiver(void **state)
     rig_free(r);
 }
 
+/* ---- the IR mark ---- */
+
+#define IR_MARK_LIT(r) (((r)->h->lcd[6] >> 2) & 1) /* the IR mark's lower arc, segment 6.2 (rcx-hardware.md §3.6) */
+
+/* Milliseconds the IR mark stays lit from now, at most `max`; 0 when it is dark after the first refresh. */
+static unsigned ir_mark_ms(struct rig *r, unsigned max)
+{
+    unsigned ms;
+    ticks(r, 10);
+    for (ms = 10; ms < max && IR_MARK_LIT(r); ms++)
+        ticks(r, 1);
+    return IR_MARK_LIT(r) ? ms : ms == 10 ? 0 : ms;
+}
+
+/* firm0328 lights the IR mark for a moment (0.25-0.8 s) around every IR exchange (reference-firmware.md, "The
+ * brick's face"): a command and its reply, a message with no reply, and the brick's own transmissions. */
+static void the_ir_mark_lights_around_every_exchange(void **state)
+{
+    struct rig *r = rig_new();
+    u8 code[] = { 0xB2, 0x02, 0x07 }; /* SendPBMessage 7 */
+    unsigned ms;
+    (void)state;
+    ticks(r, 1000);
+    assert_false(IR_MARK_LIT(r));
+    TX(r, 0x10);
+    REPLY(r, 0xEF);
+    ms = ir_mark_ms(r, 2000);
+    assert_true(ms >= 250 && ms <= 800);
+    TX(r, 0xF7, 0x05);              /* an IR message: no reply, still an exchange */
+    ms = ir_mark_ms(r, 2000);
+    assert_true(ms >= 250 && ms <= 800);
+    r->k->vm.prog = 0;
+    assert_int_equal(brick_download(&r->k->vm, 1, 0, code, sizeof code), 0);
+    assert_int_equal(brick_cmd(&r->k->vm, (const u8[]){ 0x71, 0 }, 2, NULL), 1); /* started without IR */
+    rt_run(r->k, 1);
+    ticks(r, 100);                  /* sent into a silent room ... */
+    assert_false(IR_MARK_LIT(r));
+    r->out_len = 0;
+    pump(r);
+    REPLY(r, 0xF7, 0x07);
+    ms = ir_mark_ms(r, 2000);       /* ... and the mark lit as it went out */
+    assert_true(ms >= 250 && ms <= 800);
+    rig_free(r);
+}
+
 /* ---- what the machine asks to transmit ---- */
 
 static void a_program_message_always_goes_out_as_f7(void **state)
@@ -462,6 +507,7 @@ int main(void)
         cmocka_unit_test(the_memory_map_goes_out_in_pieces),
         cmocka_unit_test(oversized_blocks_are_drained_and_forgotten),
         cmocka_unit_test(garbage_never_hangs_the_receiver),
+        cmocka_unit_test(the_ir_mark_lights_around_every_exchange),
         cmocka_unit_test(a_program_message_always_goes_out_as_f7),
         cmocka_unit_test(uart_data_follows_packconf_and_uartconf),
         cmocka_unit_test(boot_mode_waits_for_its_acknowledgement),

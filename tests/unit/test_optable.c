@@ -44,12 +44,13 @@ static int spec_index(u8 code)
 }
 
 /* host-tools.md §1: 25 35 45 75 -> 2; 12 30 -> 3; 15 -> 9; A5 -> 26; 20 -> 189; A4 -> 3*count+1;
+ * 52 62 -> 2: firm0328 answers a status byte (reference-firmware.md, "The brick's face"; nqc reads the opcode);
  * F7, D2, C2 send no reply (spec pp. 48, 61, 60); program-only commands are never answered; all others 1.
  * UploadRam 63 answers its opcode plus the requested bytes (spec p. 68): variable like A4. */
 static unsigned expected_reply(u8 code, u8 avail)
 {
     switch (code) {
-    case 0x25: case 0x35: case 0x45: case 0x75: return 2;
+    case 0x25: case 0x35: case 0x45: case 0x75: case 0x52: case 0x62: return 2;
     case 0x12: case 0x30: return 3;
     case 0x15: return 9;
     case 0xA5: return 26;

@@ -55,21 +55,33 @@ static void ticks(struct rcx *b, unsigned ms)
         vm_tick(b);
 }
 
-static void power_on_floats_without_touching_the_hardware(void **state)
+/* firm0328 reads 0x4F (off = brake, forward, power 7) for every output right after it has started
+ * (reference-firmware.md, "Observed"); the hardware is told so once (the port's latch starts at float). */
+static void power_on_brakes(void **state)
 {
     struct rcx *b = brick_new();
     unsigned i;
     (void)state;
     ticks(b, 100);
-    assert_int_equal(fake_hal_of(b)->motor_calls, 0); /* the port starts with the latch at float */
-    for (i = 0; i < 3; i++)
-        assert_int_equal(status(b, (u8)i), 0x0F);     /* spec p. 98: forward, float, max power */
+    assert_int_equal(fake_hal_of(b)->motor_calls, 3);
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(status(b, (u8)i), 0x4F);
+        expect_motor(b, (u8)i, BRAKE, 7);
+    }
     brick_free(b);
+}
+
+/* A new brick whose hardware call count starts after the power-on braking (counted in power_on_brakes). */
+static struct rcx *brick_counted(void)
+{
+    struct rcx *b = brick_new();
+    fake_hal_of(b)->motor_calls = 0;
+    return b;
 }
 
 static void effective_output(void **state)
 {
-    struct rcx *b = brick_new();
+    struct rcx *b = brick_counted();
     struct fake_hal *h = fake_hal_of(b);
     (void)state;
     ON(0x01);
@@ -116,7 +128,7 @@ static void effective_output(void **state)
 
 static void hardware_told_only_of_changes(void **state)
 {
-    struct rcx *b = brick_new();
+    struct rcx *b = brick_counted();
     struct fake_hal *h = fake_hal_of(b);
     (void)state;
     ON(0x07);
@@ -205,7 +217,7 @@ static unsigned until_change(struct rcx *b, u8 port, unsigned max)
 
 static void reversing_pause_is_60_ms(void **state)
 {
-    struct rcx *b = brick_new();
+    struct rcx *b = brick_counted();
     struct fake_hal *h = fake_hal_of(b);
     (void)state;
     ON(0x01);
@@ -303,6 +315,33 @@ static void motor_scheme_of_page_98(void **state)
     brick_free(b);
 }
 
+/* A program started from the host (nqc -run: StartTask 0) begins with its outputs forward, braked, at full power, as
+ * Run starts one (reference-firmware.md, "Observed"); other tasks, and StartTask from a program, leave them. */
+static void start_task_0_from_the_host_brakes(void **state)
+{
+    static const u8 task1[] = { 0x71, 0x00 };              /* task 1 starts task 0 */
+    static const u8 idle[] = { 0x43, 0x02, 0x64, 0x00 };   /* Wait 100 */
+    struct rcx *b = brick_new();
+    unsigned i;
+    (void)state;
+    assert_int_equal(brick_download(b, 1, 0, idle, sizeof idle), 0);
+    assert_int_equal(brick_download(b, 1, 1, task1, sizeof task1), 0);
+    ON(0x07);
+    DIR_REV(0x02);
+    POWER(0x07, 3);
+    cmd2(b, 0x71, 1);                  /* StartTask 1 from the host: outputs untouched ... */
+    brick_run_ms(b, 10, 10);           /* ... and task 1 starts task 0 from a program: untouched too */
+    assert_int_equal(b->task[0].state, RCX_TASK_WAITING);
+    assert_int_equal(status(b, 0), 0x8B);
+    assert_int_equal(status(b, 1), 0x83);
+    cmd2(b, 0x71, 0);                  /* StartTask 0 from the host */
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(status(b, (u8)i), 0x4F);
+        expect_motor(b, (u8)i, BRAKE, 7);
+    }
+    brick_free(b);
+}
+
 static void bad_operands_change_nothing(void **state)
 {
     static const struct { const char *what; u8 bytes[4]; u8 len; } rows[] = {
@@ -342,7 +381,8 @@ static void bad_operands_change_nothing(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(power_on_floats_without_touching_the_hardware),
+        cmocka_unit_test(power_on_brakes),
+        cmocka_unit_test(start_task_0_from_the_host_brakes),
         cmocka_unit_test(effective_output),
         cmocka_unit_test(hardware_told_only_of_changes),
         cmocka_unit_test(six_state_table),

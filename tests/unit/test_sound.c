@@ -84,7 +84,7 @@ static void tones_play_in_order_for_their_durations(void **state)
 
 static void rests_keep_their_place(void **state)
 {
-    static const struct note_event want[] = { { 1, 500 }, { 101, 0 }, { 151, 600 }, { 171, 0 } };
+    static const struct note_event want[] = { { 1, 500 }, { 101, 0 }, { 151, 1000 }, { 161, 600 }, { 181, 0 } };
     struct note_event ev[MAX_EVENTS];
     struct rcx *b = brick_new();
     unsigned n;
@@ -92,7 +92,7 @@ static void rests_keep_their_place(void **state)
     (void)state;
     tone(b, 500, 10);
     tone(b, 0, 5);        /* 0 Hz: 50 ms of silence */
-    brick_cmd(b, zero_length, 4, NULL); /* duration 0: nothing at all */
+    brick_cmd(b, zero_length, 4, NULL); /* duration 0: 10 ms, as firm0328 plays it (reference-firmware.md) */
     tone(b, 600, 2);
     n = listen(b, 400, ev);
     expect_events(ev, n, want, sizeof want / sizeof want[0]);
@@ -132,17 +132,18 @@ static void queue_holds_eight(void **state)
 
 static void system_sound_compositions(void **state)
 {
-    /* rcx-hardware.md §3.7 (lengths in ms); each followed by a 1 kHz marker tone to time the sound's end. */
+    /* rcx-hardware.md §3.7 for the pitches, firm0328's note lengths (reference-firmware.md, "The brick's face"), in
+     * ms; each followed by a 1 kHz marker tone to time the sound's end. */
     static const struct { u8 sound; unsigned count; struct note_event ev[14]; } rows[] = {
-        { 0, 3, { { 1, 1984 }, { 11, 0 }, { 41, 1000 } } },
-        { 1, 5, { { 1, 996 }, { 151, 0 }, { 201, 996 }, { 351, 0 }, { 401, 1000 } } },
-        { 2, 11, { { 1, 1389 }, { 61, 1295 }, { 121, 1196 }, { 181, 1096 }, { 241, 996 }, { 301, 893 },
-                   { 361, 796 }, { 421, 694 }, { 481, 598 }, { 541, 498 }, { 601, 1000 } } },
-        { 3, 11, { { 1, 498 }, { 61, 598 }, { 121, 694 }, { 181, 796 }, { 241, 893 }, { 301, 996 },
-                   { 361, 1096 }, { 421, 1196 }, { 481, 1295 }, { 541, 1389 }, { 601, 1000 } } },
+        { 0, 3, { { 1, 1984 }, { 21, 0 }, { 61, 1000 } } },
+        { 1, 5, { { 1, 996 }, { 161, 0 }, { 221, 996 }, { 381, 0 }, { 441, 1000 } } },
+        { 2, 11, { { 1, 1389 }, { 71, 1295 }, { 141, 1196 }, { 211, 1096 }, { 281, 996 }, { 351, 893 },
+                   { 421, 796 }, { 491, 694 }, { 561, 598 }, { 631, 498 }, { 701, 1000 } } },
+        { 3, 11, { { 1, 498 }, { 71, 598 }, { 141, 694 }, { 211, 796 }, { 281, 893 }, { 351, 996 },
+                   { 421, 1096 }, { 491, 1196 }, { 561, 1295 }, { 631, 1389 }, { 701, 1000 } } },
         { 4, 2, { { 1, 99 }, { 1001, 1000 } } },
-        { 5, 11, { { 1, 498 }, { 31, 598 }, { 61, 694 }, { 91, 796 }, { 121, 893 }, { 151, 996 },
-                   { 181, 1096 }, { 211, 1196 }, { 241, 1295 }, { 271, 1389 }, { 301, 1000 } } },
+        { 5, 11, { { 1, 498 }, { 41, 598 }, { 81, 694 }, { 121, 796 }, { 161, 893 }, { 201, 996 },
+                   { 241, 1096 }, { 281, 1196 }, { 321, 1295 }, { 361, 1389 }, { 401, 1000 } } },
     };
     unsigned i;
     (void)state;
@@ -175,7 +176,7 @@ static void system_sound_is_one_queue_entry(void **state)
     assert_int_equal(ev[10].hz, 100);
     assert_int_equal(ev[16].hz, 700);
     assert_int_equal(ev[17].hz, 0);
-    assert_int_equal(ev[17].ms, 671);
+    assert_int_equal(ev[17].ms, 771);     /* ten steps of 70 ms, seven tones of 10 ms */
     brick_free(b);
 }
 
@@ -210,7 +211,7 @@ static void clear_sound_silences_at_once(void **state)
 
 static void mute_ignores_program_sounds_only(void **state)
 {
-    static const struct note_event first[] = { { 1, 440 } }, click[] = { { 1, 1984 }, { 11, 0 } },
+    static const struct note_event first[] = { { 1, 440 } }, click[] = { { 1, 1984 }, { 21, 0 } },
                                    after[] = { { 1, 770 }, { 11, 0 } };
     struct note_event ev[MAX_EVENTS];
     struct rcx *b = brick_new();
@@ -263,7 +264,6 @@ static void bad_operands_change_nothing(void **state)
     static const struct { const char *what; u8 bytes[4]; u8 len; } rows[] = {
         { "PlaySystemSound 6", { 0x51, 0x06 }, 2 },
         { "PlaySystemSound 255", { 0x51, 0xFF }, 2 },
-        { "PlayTone duration 0", { 0x23, 0xB8, 0x01, 0x00 }, 4 },
         { "PlayToneVar variable 48", { 0x02, 48, 10 }, 3 },
         { "PlayToneVar variable 200", { 0x02, 200, 10 }, 3 },
         { "PlayToneVar local variable from a host", { 0x02, 40, 10 }, 3 },

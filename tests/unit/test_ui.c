@@ -125,13 +125,20 @@ static void view_cycles_inputs_and_outputs_then_returns(void **state)
     }
     press(RT_BUTTON_VIEW);
     assert_int_equal(b->display.view, DISPLAY_WATCH);
+}
 
-    display_view(b, DISPLAY_USER); /* a program's own display is where View comes back to */
-    press(RT_BUTTON_VIEW);
-    assert_int_equal(b->display.view, DISPLAY_INPUT_1);
-    for (u8 i = 0; i < 6; i++)
+/* firm0328 with a program's own display (reference-firmware.md, "The brick's face"): program value -> watch ->
+ * inputs 1-3 -> A -> B -> C -> watch; the program's value drops out after the first press. */
+static void view_from_a_user_display_goes_to_the_watch(void **state)
+{
+    static const u8 order[] = { DISPLAY_WATCH, DISPLAY_INPUT_1, DISPLAY_INPUT_2, DISPLAY_INPUT_3, DISPLAY_OUTPUT_A,
+                                DISPLAY_OUTPUT_B, DISPLAY_OUTPUT_C, DISPLAY_WATCH, DISPLAY_INPUT_1 };
+    (void)state;
+    display_user(b, 0, 2, 42);         /* what nqc's SetUserDisplay sends */
+    for (u8 i = 0; i < sizeof order; i++) {
         press(RT_BUTTON_VIEW);
-    assert_int_equal(b->display.view, DISPLAY_USER);
+        assert_int_equal(b->display.view, order[i]);
+    }
 }
 
 static void presses_click_releases_do_nothing(void **state)
@@ -156,7 +163,23 @@ static void presses_click_releases_do_nothing(void **state)
     assert_false(running());
 }
 
-static void on_off_powers_down_and_keeps_memory(void **state)
+/* Milliseconds until the next standby (the recording HAL's hal_power_off returns at once: switched on again). */
+static unsigned until_power_off(unsigned max)
+{
+    unsigned t = 0, offs = h->power_offs;
+    while (h->power_offs == offs && t < max) {
+        ms(1);
+        t++;
+    }
+    return t;
+}
+
+/*
+ * On-Off: the key click (1984 Hz 20 ms, 40 ms silence) is heard before standby; on waking the double beep (996 Hz,
+ * 160 ms, 60 ms gap, 160 ms) plays, the watch starts again from 00:00 and the outputs read brake
+ * (reference-firmware.md, "The brick's face"). Programs, variables and memory are kept; the program is stopped.
+ */
+static void on_off_clicks_powers_down_and_keeps_memory(void **state)
 {
     (void)state;
     load_forever();
@@ -165,18 +188,59 @@ static void on_off_powers_down_and_keeps_memory(void **state)
     b->watch = 600;
     u16 size = mem_obj_size(b, rcx_obj_task(0, 0));
     b->out.motor[0] |= RCX_MOTOR_ON;
-    press(RT_BUTTON_ONOFF);
+    u16 calls = h->sound_calls;
+    rt_button(k, RT_BUTTON_ONOFF, 1);
+    unsigned t = until_power_off(1000);
     assert_int_equal(h->power_offs, 1);
+    assert_true(t >= 60 && t <= 62);   /* after the click and its silence, not before */
+    assert_int_equal(h->sound_calls, calls + 2);
+    assert_int_equal(h->sound_log[calls], 1984);
+    assert_int_equal(h->sound_log[calls + 1], 0);
     assert_false(running());
     assert_int_equal(b->global[5], 1234);
-    assert_int_equal(b->watch, 600);
+    assert_int_equal(b->watch, 0);
     assert_int_equal(mem_obj_size(b, rcx_obj_task(0, 0)), size);
-    for (u8 i = 0; i < 3; i++) { /* back on: forward, float, full power */
-        assert_int_equal(b->out.motor[i], RCX_MOTOR_FWD | 7);
-        assert_int_equal(h->motor_mode[i], HAL_MOTOR_FLOAT);
+    for (u8 i = 0; i < 3; i++) { /* back on: forward, brake, full power */
+        assert_int_equal(b->out.motor[i], RCX_MOTOR_FWD | RCX_MOTOR_BRAKE | 7);
+        assert_int_equal(h->motor_mode[i], HAL_MOTOR_BRAKE);
     }
+    rt_button(k, RT_BUTTON_ONOFF, 0);
+    calls = h->sound_calls;
     ms(1000);
     assert_int_equal(h->power_offs, 1);
+    assert_int_equal(h->sound_calls, calls + 4);
+    assert_int_equal(h->sound_log[calls], 996);
+    assert_int_equal(h->sound_log[calls + 1], 0);
+    assert_int_equal(h->sound_log[calls + 2], 996);
+    assert_int_equal(h->sound_log[calls + 3], 0);
+    assert_true(b->watch_ms >= 999 && b->watch_ms <= 1001);
+}
+
+/* The beep's timing, and the click of an automatic switch-off. */
+static void switching_off_by_itself_clicks_too(void **state)
+{
+    static const u16 beep[] = { 996, 0, 996, 0 };
+    static const unsigned at[] = { 0, 160, 220, 380 };
+    unsigned t, i = 0, start;
+    (void)state;
+    b->power_down_min = 1;
+    b->idle_reset = 1;
+    u16 calls = h->sound_calls;
+    t = until_power_off(UI_MINUTE_MS + 100);
+    assert_true(t >= UI_MINUTE_MS + 60 && t <= UI_MINUTE_MS + 62);
+    assert_int_equal(h->sound_log[calls], 1984);
+    calls = h->sound_calls;
+    for (start = 0, t = 0; t < 500; t++) {
+        ms(1);
+        if (h->sound_calls > calls + i) {
+            if (i == 0)
+                start = t;
+            assert_int_equal(h->sound_log[calls + i], beep[i]);
+            assert_int_equal(t - start, at[i]);
+            i++;
+        }
+    }
+    assert_int_equal(i, 4);
 }
 
 static void power_down_time_counts_idle_minutes(void **state)
@@ -218,12 +282,12 @@ static void turn_off_waits_for_the_reply_and_needs_a_power_down_time(void **stat
     ms(50);
     assert_int_equal(h->power_offs, 0);
     h->ir_busy = 0;
-    ms(50);
+    ms(100);                           /* and the click */
     assert_int_equal(h->power_offs, 1);
 
     b->power_down_min = 0;
     brick_cmd(b, off, 1, NULL);
-    ms(50);
+    ms(100);
     assert_int_equal(h->power_offs, 1);
 }
 
@@ -251,7 +315,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(prgm_stops_a_running_program, setup, teardown),
         cmocka_unit_test_setup_teardown(view_cycles_inputs_and_outputs_then_returns, setup, teardown),
         cmocka_unit_test_setup_teardown(presses_click_releases_do_nothing, setup, teardown),
-        cmocka_unit_test_setup_teardown(on_off_powers_down_and_keeps_memory, setup, teardown),
+        cmocka_unit_test_setup_teardown(view_from_a_user_display_goes_to_the_watch, setup, teardown),
+        cmocka_unit_test_setup_teardown(on_off_clicks_powers_down_and_keeps_memory, setup, teardown),
+        cmocka_unit_test_setup_teardown(switching_off_by_itself_clicks_too, setup, teardown),
         cmocka_unit_test_setup_teardown(power_down_time_counts_idle_minutes, setup, teardown),
         cmocka_unit_test_setup_teardown(power_down_time_zero_never_sleeps, setup, teardown),
         cmocka_unit_test_setup_teardown(turn_off_waits_for_the_reply_and_needs_a_power_down_time, setup, teardown),
