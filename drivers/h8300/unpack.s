@@ -14,8 +14,11 @@ _rcx_unpacker:
 	mov.w	#_rcx_standby_stub+16,r7 ; a stack for its calls (FD80-FD8F), as crt0.s's
 	mov.w	#_rcx_head_end,r5	; where this section was downloaded
 	mov.w	#_rcx_unpacker,r6
-	mov.b	#_rcx_unpacker_size,r4l
-	eepmov				; r5 then = _rcx_packed_start
+0:	mov.w	@r5+,r0			; words: both ends are even (linker/openrcx.ld)
+	mov.w	r0,@r6
+	adds	#2,r6
+	cmp.b	#_rcx_unpacker_end_lo,r6l ; the section is shorter than 256 bytes
+	bne	0b			; r5 then = _rcx_packed_start
 	.word	0x5A00,1f		; jmp @1f to the copy; as data, so that ld --relax does not make it a bra (to here)
 
 1:	; Move the downloaded bytes after this section up by F000 - C000, as if the largest download (16 384 bytes,

@@ -439,15 +439,6 @@ int h8_step(struct h8 *h)
         *rd = fetch(h);
         nz16(h, *rd);
         return 0;
-    case 0x7B: /* EEPMOV: R4L bytes from @R5+ to @R6+, one after the other (an overlapping copy repeats) */
-        if (w != 0x7B5C || fetch(h) != 0x598F)
-            return unknown(h, at, w);
-        for (; h->r[4] & 0xFF; h->r[4] = (uint16_t)(h->r[4] - 1)) {
-            wr8(h, h->r[6], rd8(h, h->r[5]));
-            h->r[5] = (uint16_t)(h->r[5] + 1);
-            h->r[6] = (uint16_t)(h->r[6] + 1);
-        }
-        return 0;
     case 0x7C: case 0x7D: case 0x7E: case 0x7F:
         return membit(h, at, w);
     default:
