@@ -3,8 +3,8 @@
 # refused. The limits are the script's own symbols (_rcx_image_max, _rcx_rom_vars), read back from the image; the
 # image's size is that of the download, the S-records the packer wrote (drivers/pack: the head and the packed rest).
 # RAM needs no check here: the .bss section's memory region ends at 0xF000, which ld checks after relaxing, as it
-# checks that section .high (the code run at 0xF000) fits in 0xF000-0xFB7F. Checked here: .high is downloaded last,
-# .bss starts where it was loaded (crt0.s copies it away before clearing .bss), and the image's size counts it.
+# checks that section .high (the code run at 0xF000) fits in 0xF000-0xFB7F. Checked here: .high is unpacked last,
+# .bss starts where it was unpacked (crt0.s copies it away before clearing .bss), and the download's size.
 #
 # Usage: cmake -DNM=<nm> -DIMAGE=<linked image> -DSREC=<its S-records> -P check_link.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/nm_symbols.cmake)
