@@ -2,8 +2,9 @@
 ; that the ROM calls (with jsr) once a download has been unlocked.
 ;
 ; State at entry (rcx-hardware.md 2.3 and 6): interrupts enabled, SP in on-chip RAM with a return
-; address into the ROM on top, ROM handlers still in some RAM vectors, IRQ0 enabled. The image was
-; loaded in place, so .data needs no copy. Section .high (linker/openrcx.ld), downloaded last, runs at F000: it is
+; address into the ROM on top, ROM handlers still in some RAM vectors, IRQ0 enabled. Only the entry and the knock
+; string are downloaded as they run: the download then holds the unpacker (unpack.s) and the rest of the image
+; packed, which the unpacker puts in place before it comes back to _rcx_head_end, so .data needs no copy. Section .high (linker/openrcx.ld), downloaded last, runs at F000: it is
 ; copied there first, as .bss starts where it was loaded; then .bss, which holds garbage, is cleared. Nothing here
 ; may call code in .high before the copy.
 
@@ -11,6 +12,7 @@
 	.global	_start
 	.global	_rcx_knock
 	.global	_rcx_irq_ignore
+	.global	_rcx_head_end
 
 _start:
 	orc	#0x80,ccr		; mask interrupts until the drivers are ready
@@ -24,6 +26,8 @@ _rcx_knock:
 	.byte	0
 	.align	1
 
+; Downloaded: the unpacker (section .unpack), which copies itself on-chip, then unpacks from here on and jumps here.
+_rcx_head_end:
 1:	mov.w	#_rcx_standby_stub+16,r7 ; a stack below all that is cleared (FD80-FD8F: standby code later)
 	sub.b	r0l,r0l
 	mov.b	r0l,@0xc7:8		; IER (FFC7) = 0: IRQ0-2 off

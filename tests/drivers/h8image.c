@@ -50,10 +50,14 @@ int h8_image_read(struct h8 *h, const char *image, const char *nm)
     return 0;
 }
 
+unsigned long long h8_unpack_states;
+
 int h8_image_start(struct h8 *h)
 {
     long entry = h8_sym("_start"), main_at = h8_sym("_main"), top = h8_sym("_rcx_stack_top");
+    long head_end = h8_sym("_rcx_head_end");
     unsigned long n;
+    uint16_t was = 0;
 
     if (entry < 0 || main_at < 0 || top < 0) {
         fprintf(stderr, "image without _start, _main or _rcx_stack_top\n");
@@ -63,8 +67,13 @@ int h8_image_start(struct h8 *h)
     h->r[7] = 0xFF7C;
     h8_write16(h, h->r[7], 0x0000);
     h->pc = (uint16_t)entry;
+    h->states = 0;
+    h8_unpack_states = 0;
     for (n = 0; h->pc != (uint16_t)main_at; n++) {
-        if (n == 1000000ul || h->pc < 0x8000) {
+        if (h->pc == (uint16_t)head_end && was >= 0xF000) /* back from the unpacker, which runs on-chip */
+            h8_unpack_states = h->states;
+        was = h->pc;
+        if (n == 3000000ul || h->pc < 0x8000) {
             fprintf(stderr, "crt0: main not reached (pc %04X)\n", h->pc);
             return -1;
         }

@@ -13,10 +13,13 @@
 int h8_image_load(struct h8 *h, const char *image, const char *nm);
 /* Only the loading: the bytes of `image`.srec at their load addresses, as the ROM leaves them, and the symbols. */
 int h8_image_read(struct h8 *h, const char *image, const char *nm);
-/* The image's own start-up code (crt0.s), run from the entry as the ROM calls it until it calls main: it copies
- * section .high to F000, zeroes the motor latch, clears .bss and the on-chip variables. The stack pointer is then
- * left at the top of the stack (_rcx_stack_top), for h8_call(). 0 on success; on failure a message is printed. */
+/* The image's own start-up code, run from the entry as the ROM calls it until it calls main: the unpacker
+ * (unpack.s) puts the image in place from the packed download, then crt0.s copies section .high to F000, zeroes
+ * the motor latch, clears .bss and the on-chip variables. The stack pointer is then left at the top of the stack
+ * (_rcx_stack_top), for h8_call(). 0 on success; on failure a message is printed. */
 int h8_image_start(struct h8 *h);
+/* The states the last h8_image_start() took from the entry until the unpacker had finished (0: it never did). */
+extern unsigned long long h8_unpack_states;
 /* The address of a symbol (C name with its leading underscore), -1 if absent. */
 long h8_sym(const char *name);
 /* The function whose code holds `pc` (the nearest code symbol at or below it), "?" if none. */

@@ -4,7 +4,9 @@
  * what the host cannot: 16-bit int, the H8 compiler's code, the helpers as linked. It also checks the simulator,
  * which the firmware benchmark (tests/bench/firmware.sh) relies on.
  *
- * Usage: test_h8image <image (COFF; image.srec beside it)> <h8300 nm>
+ * It also runs the image's start-up from its packed download, and its unpacker on streams of the host's packer.
+ *
+ * Usage: test_h8image <image (COFF; image.srec and image.bin beside it)> <h8300 nm>
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -17,6 +19,7 @@
 #include "arith.h"
 #include "hw.h"
 #include "h8image.h"
+#include "pack.h"
 
 static struct h8 h;
 static const char *image_path, *nm_path;
@@ -398,13 +401,28 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     assert_int_equal(h.mem[P6DR], 0x68);
 }
 
-/* The start-up code (crt0.s), run from the entry on the bytes as the ROM loads them: section .high, downloaded last,
- * must be copied to F000 where it runs (the loader puts nothing there), the motor latch zeroed after that copy (on
- * the brick every write to F000-FB7F reaches it), and .bss, which starts where .high was loaded, cleared. */
-static void startup_copies_code_to_f000(void **state)
+/* The image as linked, from 0x8000 to its end (openrcx.bin, objcopy's copy of the COFF image): what must run. */
+static size_t image_bytes(uint8_t *out, size_t max)
 {
-    static uint8_t loaded[65536];
-    long start, end, load, bss, bss_end, image_end, i;
+    char path[512];
+    size_t n;
+    FILE *f;
+    snprintf(path, sizeof path, "%s.bin", image_path);
+    f = fopen(path, "rb");
+    assert_non_null(f);
+    n = fread(out, 1, max, f);
+    fclose(f);
+    return n;
+}
+
+/* The start-up code, run from the entry on the bytes as the ROM loads them (openrcx.srec: the head, the unpacker and
+ * the rest packed): every byte of the image must be unpacked to its run address, section .high, unpacked last, then
+ * copied to F000 where it runs (the loader puts nothing there), the motor latch zeroed after that copy (on the brick
+ * every write to F000-FB7F reaches it), and .bss, which starts where .high was unpacked, cleared. */
+static void startup_unpacks_the_image_and_copies_code_to_f000(void **state)
+{
+    static uint8_t image[0x8000];
+    long start, end, load, bss, bss_end, image_end, head_end, i;
     (void)state;
     assert_int_equal(h8_image_read(&h, image_path, nm_path), 0);
     start = h8_sym("_rcx_high_start");
@@ -413,29 +431,91 @@ static void startup_copies_code_to_f000(void **state)
     bss = h8_sym("_rcx_bss_start");
     bss_end = h8_sym("_rcx_bss_end");
     image_end = h8_sym("_rcx_image_end");
+    head_end = h8_sym("_rcx_head_end");
     assert_true(start == 0xF000 && end <= 0xFB80 && load >= 0x8000 && bss_end > bss);
     assert_true(end - start >= 1024); /* a real part of the code runs there */
     assert_int_equal(load + (end - start), image_end);
     assert_int_equal(bss, load);
     assert_true(h8_func_at((uint16_t)start)[0] != '?'); /* code, with its symbols */
+    assert_int_equal(image_bytes(image, sizeof image), image_end - 0x8000);
+
+    /* The download: the entry and the knock string as they run, then other bytes (the unpacker, the packed rest),
+     * fewer than the image has; nothing at F000. */
+    assert_memory_equal(h.mem + 0x8000, image, (size_t)(head_end - 0x8000));
+    for (i = image_end - 64; i < image_end; i++)
+        assert_int_equal(h.mem[i], 0);
+    assert_true(memcmp(h.mem + head_end, image + (head_end - 0x8000), 64) != 0);
     for (i = start; i < end; i++)
-        assert_int_equal(h.mem[i], 0); /* downloaded at its load address only */
-    memcpy(loaded, h.mem, sizeof loaded);
-    h.mem[0xFF80] = 0xC3;                                        /* what the copy left in the latch */
-    memset(h.mem + image_end, 0xA5, (size_t)(bss_end - image_end)); /* RAM holds garbage */
+        assert_int_equal(h.mem[i], 0);
+
+    h.mem[0xFF80] = 0xC3;                                       /* what the copy left in the latch */
+    memset(h.mem + 0xC000, 0xA5, 0x3000);                       /* RAM past the largest download holds garbage */
     assert_int_equal(h8_image_start(&h), 0);
-    assert_memory_equal(h.mem + start, loaded + load, (size_t)(end - start));
+    /* Every run address holds the image's byte: code and data from 0x8000, section .high at F000. */
+    assert_memory_equal(h.mem + 0x8000, image, (size_t)(load - 0x8000));
+    assert_memory_equal(h.mem + start, image + (load - 0x8000), (size_t)(end - start));
     assert_int_equal(h.mem[0xFF80], 0);
     for (i = bss; i < bss_end; i++)
         assert_int_equal(h.mem[i], 0);
     assert_int_equal(h.pc, h8_sym("_main"));
+    assert_true(h8_unpack_states > 0);
+    printf("start-up: unpacking %ld bytes took %llu states (%.1f ms at 16 MHz), main reached after %llu states\n",
+           image_end - head_end, h8_unpack_states, h8_unpack_states / 16000.0, h.states);
     /* Functions there then run from F000 (h8bench, tests/bench/firmware.sh, calls rt_init and vm_direct there). */
+}
+
+/* The unpacker's loop (unpack.s, _rcx_unpack) on its own, in its place on-chip, on streams of the host's packer:
+ * bytes with no repeats, long runs, the longest matches, far offsets. */
+static void unpack_on_the_h8(const uint8_t *data, size_t n)
+{
+    static uint8_t packed[PACK_BOUND(0x3000)];
+    const uint16_t from = 0xC000, to = 0x8100;
+    long unpacker = h8_sym("_rcx_unpacker"), size = h8_sym("_rcx_unpacker_size"), loop = h8_sym("_rcx_unpack");
+    long head_end = h8_sym("_rcx_head_end");
+    size_t len = pack(data, n, packed), steps;
+
+    assert_true(n > 0 && n <= 0x3000 && len <= 0x2F00);
+    memcpy(h.mem + unpacker, h.mem + head_end, (size_t)size); /* the unpacker copies itself there */
+    memcpy(h.mem + from, packed, len);
+    memset(h.mem + to, 0xA5, n + 16);
+    h.r[5] = from;
+    h.r[6] = to;
+    h.r[1] = (uint16_t)(to + n);
+    h.r[3] = 0x80;
+    h.r[7] = 0xFD90;
+    h.pc = (uint16_t)loop;
+    for (steps = 0; h.pc != (uint16_t)head_end; steps++) {
+        assert_true(steps < 2000000 && h.pc >= unpacker && h.pc < unpacker + size);
+        assert_int_equal(h8_step(&h), 0);
+    }
+    assert_memory_equal(h.mem + to, data, n);
+    assert_int_equal(h.mem[to + n], 0xA5);
+    assert_int_equal(h.r[5], from + len);
+}
+
+static void unpacker_loop_on_edge_cases(void **state)
+{
+    static uint8_t data[0x3000];
+    size_t i;
+    (void)state;
+    assert_int_equal(h8_image_read(&h, image_path, nm_path), 0);
+    data[0] = 0x5A;
+    unpack_on_the_h8(data, 1);
+    for (i = 0; i < 0x2000; i++)
+        data[i] = (uint8_t)(rnd() >> 3);
+    unpack_on_the_h8(data, 0x2000); /* no repeats worth a match: literals (9 bits a byte) */
+    memset(data, 0, sizeof data);
+    unpack_on_the_h8(data, sizeof data); /* one run: matches of 256 bytes at offset 1 */
+    for (i = 0; i < sizeof data; i++)
+        data[i] = i < 300 ? (uint8_t)rnd() : i < 0x2E00 ? (uint8_t)(i * 7) : data[i - 0x2D00];
+    unpack_on_the_h8(data, sizeof data); /* offsets of more than 256 and of 11 KB */
 }
 
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(startup_copies_code_to_f000),
+        cmocka_unit_test(startup_unpacks_the_image_and_copies_code_to_f000),
+        cmocka_unit_test(unpacker_loop_on_edge_cases),
         cmocka_unit_test_setup(arithmetic_helpers_as_linked, load),
         cmocka_unit_test_setup(battery_conversion_as_compiled, load),
         cmocka_unit_test_setup(tones_as_compiled, load),
