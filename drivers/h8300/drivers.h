@@ -25,7 +25,6 @@ void rcx_sci_isr(void);             /* byte received (with or without error), tr
 
 /* hal.c: the other outputs. */
 void drv_outputs_on(void);          /* ports, motors, speaker, LCD (with the image it showed), A/D, IR link */
-void drv_outputs_off(u8 lcd);       /* everything quiet and unpowered; with lcd, the display switched off too */
 
 /* irq.s: entry points for the RAM vector table, and the standby code copied to on-chip RAM. */
 void rcx_irq_ignore(void);

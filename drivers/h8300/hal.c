@@ -88,7 +88,8 @@ void drv_outputs_on(void)
     sci_start(0);
 }
 
-void drv_outputs_off(u8 lcd)
+/* For standby: everything quiet and unpowered, the display switched off. */
+static void outputs_off(void)
 {
     FRT_TIER = 0;                 /* no tick: no motor pattern, no A/D cycle */
     AD_ADCSR = 0;
@@ -98,10 +99,8 @@ void drv_outputs_off(u8 lcd)
     tone_hz = 0;
     P6DR = P6_SCL | P6_SDA;       /* sensors, carrier and P6.3 low; LCD bus idle */
     p6ddr_set((u8)(p6ddr & ~(P6_SPEAKER | P6_AWAKE)));
-    if (lcd) {
-        hw_lcd_send(lcd_frame, hw_lcd_off_frame(lcd_frame)); /* the image from byte 4 on stays */
-        P6DR = 0;                 /* bus lines low: no current into the controller in standby */
-    }
+    hw_lcd_send(lcd_frame, hw_lcd_off_frame(lcd_frame)); /* the image from byte 4 on stays */
+    P6DR = 0;                     /* bus lines low: no current into the controller in standby */
 }
 
 /* On-Off up for 20 ms in a row. */
@@ -124,7 +123,7 @@ void hal_power_off(struct rcx *b)
 {
     (void)b;
     h8_irq_disable();
-    drv_outputs_off(1);
+    outputs_off();
     wait_onoff_released(); /* else the release would wake the brick again at once */
     memcpy(STANDBY_CODE, rcx_standby_code, 16); /* irq.s checks the size */
     RCX_RAMVEC(RCX_VEC_IRQ1) = STANDBY_RTS; /* and so it stays: IRQ1 is only enabled here */
@@ -142,14 +141,51 @@ void hal_power_off(struct rcx *b)
 }
 
 /*
- * Back to the ROM for a firmware download (§2.4): everything off, TCNT0 non-zero so that the ROM's reset code
- * comes up awake instead of asleep, then the jump through the reset vector. The ROM re-initialises the LCD.
+ * What the ROM's start-up code finds after a real reset, for every register the drivers set (values after reset in
+ * the H8/3297-series hardware manual): a jump to the reset vector is not a reset, and the ROM cannot assume any of
+ * them otherwise. Runs of consecutive registers: the low byte of the first address (page FF00, or FD00 for the
+ * ROM's port shadows below 0x90), how many, then their values in address order, which for the 16-bit FRC and OCRA
+ * is high byte first, as their temporary latch wants. The SCI is stopped before its mode changes; every register is
+ * read before it is written, so that the flags it shows set are cleared by the 0 written.
+ */
+static const u8 rom_state[] = {
+    0xDA, 3, 0x00, 0xFF, 0x84,  /* SCI SCR, TDR, SSR */
+    0xD8, 2, 0x00, 0xFF,        /* SCI SMR, BRR */
+    0x90, 8, 0x01, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0x00, 0xE0, /* FRT TIER, TCSR, FRC, OCRA, TCR, TOCR */
+    0xB5, 1, 0x00,              /* P4DDR (P3 is the data bus: never touched) */
+    0xB7, 5, 0x00, 0xF8, 0x00, 0xF8, 0x00, /* P4DR, P5DDR, P6DDR, P5DR, P6DR */
+    0xC3, 2, 0xF8, 0x0B,        /* STCR, SYSCR (no standby on SLEEP; the ROM sets its own) */
+    /* ISCR, IER, TMR0 TCR, TCSR, TCORA, TCORB, and TCNT, the one exception: non-zero, so that the ROM comes up
+     * awake and ready for a download instead of asleep (rcx-hardware.md 2.4). */
+    0xC6, 7, 0xF8, 0xF8, 0x00, 0x10, 0xFF, 0xFF, 0x01,
+    0xD0, 5, 0x00, 0x10, 0xFF, 0xFF, 0x00, /* TMR1 TCR, TCSR, TCORA, TCORB, TCNT */
+    0xE8, 2, 0x00, 0x7F,        /* A/D ADCSR, ADCR */
+    /* The ROM's copies of the write-only port directions (rcx-hardware.md 1.2), which the start-up code's stack
+     * and the standby code overwrote: P1 and P2 as the ROM set them (the address bus), the others as just reset. */
+    0x80, 7, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00, 0x00,
+    0
+};
+
+/*
+ * Back to the ROM for a firmware download (§2.4): everything off and as after a reset, then the jump through the
+ * reset vector. The ROM re-initialises the LCD, its variables and the RAM vectors itself.
  */
 void hal_enter_rom(struct rcx *b)
 {
+    const u8 *p = rom_state;
+    u8 a, n;
+
     (void)b;
-    h8_irq_disable();      /* IER is 0 already: IRQ1 is only enabled in standby */
-    drv_outputs_off(0);
-    TMR0_TCNT = 1;
+    h8_irq_disable();
+    MOTOR_LATCH = 0;
+    while ((a = *p++) != 0) {
+        volatile u8 *r = (volatile u8 *)(unsigned)((a < 0x90 ? 0xFD00 : 0xFF00) | a);
+
+        n = *p++;
+        do {
+            (void)*r;
+            *r++ = *p++;
+        } while (--n);
+    }
     __asm__ __volatile__("jmp\t@@0:8");
 }

@@ -511,6 +511,94 @@ static void unpacker_loop_on_edge_cases(void **state)
     unpack_on_the_h8(data, sizeof data); /* offsets of more than 256 and of 11 KB */
 }
 
+/*
+ * Issue 9: the hand-back to the ROM (GoIntoBootMode) leaves every register the drivers set as a reset leaves it,
+ * since a jump to the reset vector is no reset. Values after reset from the H8/3297-series hardware manual (bits
+ * that read as 1 included); TMR0's counter is left non-zero, the ROM's sign to come up awake (rcx-hardware.md 2.4),
+ * and the ROM's shadows of the port directions at FD80 (rcx-hardware.md 1.2) agree with the ports again.
+ */
+static const struct { uint16_t addr; uint8_t value; const char *name; } after_reset[] = {
+    { 0xFF90, 0x01, "FRT TIER" }, { 0xFF91, 0x00, "FRT TCSR" }, { 0xFF92, 0x00, "FRC high" },
+    { 0xFF93, 0x00, "FRC low" }, { 0xFF94, 0xFF, "OCRA high" }, { 0xFF95, 0xFF, "OCRA low" },
+    { 0xFF96, 0x00, "FRT TCR" }, { 0xFF97, 0xE0, "FRT TOCR" },
+    { 0xFFB5, 0x00, "P4DDR" }, { 0xFFB7, 0x00, "P4DR" }, { 0xFFB8, 0xF8, "P5DDR" }, { 0xFFB9, 0x00, "P6DDR" },
+    { 0xFFBA, 0xF8, "P5DR" }, { 0xFFBB, 0x00, "P6DR" },
+    { 0xFFC3, 0xF8, "STCR" }, { 0xFFC4, 0x0B, "SYSCR" }, { 0xFFC6, 0xF8, "ISCR" }, { 0xFFC7, 0xF8, "IER" },
+    { 0xFFC8, 0x00, "TMR0 TCR" }, { 0xFFC9, 0x10, "TMR0 TCSR" }, { 0xFFCA, 0xFF, "TMR0 TCORA" },
+    { 0xFFCB, 0xFF, "TMR0 TCORB" },
+    { 0xFFD0, 0x00, "TMR1 TCR" }, { 0xFFD1, 0x10, "TMR1 TCSR" }, { 0xFFD2, 0xFF, "TMR1 TCORA" },
+    { 0xFFD3, 0xFF, "TMR1 TCORB" }, { 0xFFD4, 0x00, "TMR1 TCNT" },
+    { 0xFFD8, 0x00, "SCI SMR" }, { 0xFFD9, 0xFF, "SCI BRR" }, { 0xFFDA, 0x00, "SCI SCR" }, { 0xFFDB, 0xFF, "SCI TDR" },
+    { 0xFFDC, 0x84, "SCI SSR" },
+    { 0xFFE8, 0x00, "ADCSR" }, { 0xFFE9, 0x7F, "ADCR" },
+    { 0xFF80, 0x00, "motor latch" },
+    { 0xFD80, 0xFF, "P1DDR shadow" }, { 0xFD81, 0xFF, "P2DDR shadow" }, { 0xFD82, 0x00, "P3DDR shadow" },
+    { 0xFD83, 0x00, "P4DDR shadow" }, { 0xFD84, 0x00, "P5DDR shadow" }, { 0xFD85, 0x00, "P6DDR shadow" },
+    { 0xFD86, 0x00, "P7 shadow" },
+};
+#define RESET_VECTOR_TARGET 0x03AE /* what the ROM's vector at 0000 holds */
+
+static int reset_value_of(uint16_t a, uint8_t *v)
+{
+    for (unsigned i = 0; i < sizeof after_reset / sizeof after_reset[0]; i++)
+        if (after_reset[i].addr == a) {
+            *v = after_reset[i].value;
+            return 1;
+        }
+    return 0;
+}
+
+/* The registers (FF80-FFFF) the drivers' set-up writes, found by running it over two different fillings. */
+static void registers_the_drivers_write(uint8_t written[128])
+{
+    static const uint8_t fill[2] = { 0x5A, 0xA5 };
+    memset(written, 0, 128);
+    for (unsigned f = 0; f < 2; f++) {
+        assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
+        memset(h.mem + 0xFF80, fill[f], 128);
+        h8_run(&h, "_drv_outputs_on", 0, 0, 0, NULL, 0);
+        h8_run(&h, "_drv_tick_start", 1, 0, 0, NULL, 0);
+        h8_run(&h, "_sci_start", HAL_IR_4800 | HAL_IR_76KHZ | HAL_IR_DUTY25, 0, 0, NULL, 0);
+        h8_run(&h, "_hal_sound", 0, 440, 0, NULL, 0);
+        h8_run(&h, "_hal_ir_range", 0, 1, 0, NULL, 0);
+        h8_run(&h, "_hal_sensor_power", 0, 1, 1, NULL, 0);
+        for (unsigned i = 0; i < 128; i++)
+            written[i] |= h.mem[0xFF80 + i] != fill[f];
+    }
+}
+
+static void hand_back_leaves_registers_as_after_reset(void **state)
+{
+    uint8_t written[128], v;
+    long rc;
+    (void)state;
+    registers_the_drivers_write(written);
+    /* The brick as it runs: the drivers' settings, flags standing, the standby code at FD80. */
+    assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
+    for (unsigned i = 0; i < 128; i++)
+        h.mem[0xFF80 + i] = (uint8_t)(0x5A ^ i);
+    memset(h.mem + 0xFD80, 0x6D, 16);
+    h.mem[0] = RESET_VECTOR_TARGET >> 8;
+    h.mem[1] = RESET_VECTOR_TARGET & 0xFF;
+    rc = h8_call(&h, (uint16_t)h8_sym("_hal_enter_rom"), 0, 0, 0, NULL, 0, 100000);
+    assert_int_equal(rc, -1);
+    assert_string_equal(h.error, "jump into the ROM (03AE)");
+    assert_true(h.ccr & 0x80); /* interrupts masked */
+    for (unsigned i = 0; i < sizeof after_reset / sizeof after_reset[0]; i++) {
+        if (h.mem[after_reset[i].addr] != after_reset[i].value)
+            fail_msg("%s (%04X) is %02X after the hand-back, %02X after a reset", after_reset[i].name,
+                     after_reset[i].addr, h.mem[after_reset[i].addr], after_reset[i].value);
+    }
+    assert_int_not_equal(h.mem[0xFFCC], 0); /* TMR0 TCNT: come up awake */
+    for (unsigned i = 0; i < 128; i++) {
+        uint16_t a = (uint16_t)(0xFF80 + i);
+        if (written[i] && a != 0xFFCC && !reset_value_of(a, &v))
+            fail_msg("the drivers write %04X, which the hand-back does not restore", a);
+        if (!written[i] && !reset_value_of(a, &v) && a != 0xFFCC && h.mem[a] != (uint8_t)(0x5A ^ i))
+            fail_msg("the hand-back wrote %04X, which the drivers never touch", a);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -530,6 +618,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(sci_interrupt_receives_bytes_and_errors, load),
         cmocka_unit_test_setup(sci_interrupt_transmits_then_waits_for_the_end, load),
         cmocka_unit_test_setup(timer_interrupt_drives_motors_and_the_scan, load),
+        cmocka_unit_test(hand_back_leaves_registers_as_after_reset),
     };
     if (argc != 3) {
         fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
