@@ -116,5 +116,9 @@
  * and writes them with 2-byte instructions instead of 4 (section .eight, linker/openrcx.ld). Cleared at start;
  * no initial values (the section is not downloaded). */
 #define RCX_EIGHT __attribute__((eightbit_data))
+/* Rarely run code, and its constants, placed with the code that runs at F000 (section .high, linker/openrcx.ld): it
+ * costs no program memory there. Only for what runs after the start-up code has copied it up. */
+#define RCX_HIGH_CODE __attribute__((section(".hitext")))
+#define RCX_HIGH_DATA __attribute__((section(".hidata")))
 
 #endif

@@ -148,7 +148,7 @@ void hal_power_off(struct rcx *b)
  * is high byte first, as their temporary latch wants. The SCI is stopped before its mode changes; every register is
  * read before it is written, so that the flags it shows set are cleared by the 0 written.
  */
-static const u8 rom_state[] = {
+static const u8 rom_state[] RCX_HIGH_DATA = {
     0xDA, 3, 0x00, 0xFF, 0x84,  /* SCI SCR, TDR, SSR */
     0xD8, 2, 0x00, 0xFF,        /* SCI SMR, BRR */
     0x90, 8, 0x01, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0x00, 0xE0, /* FRT TIER, TCSR, FRC, OCRA, TCR, TOCR */
@@ -170,7 +170,7 @@ static const u8 rom_state[] = {
  * Back to the ROM for a firmware download (§2.4): everything off and as after a reset, then the jump through the
  * reset vector. The ROM re-initialises the LCD, its variables and the RAM vectors itself.
  */
-void hal_enter_rom(struct rcx *b)
+RCX_HIGH_CODE void hal_enter_rom(struct rcx *b)
 {
     const u8 *p = rom_state;
     u8 a, n;
