@@ -29,8 +29,9 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
         hal_enter_rom(&k->vm);
         return 0;
     }
-    ui_poll(k);
-    return vm_run(&k->vm, budget);
+    if (k->ui.off)
+        ui_poll(k);            /* a switch-off to carry out */
+    return k->vm.runmask ? vm_run(&k->vm, budget) : 0; /* no call when no task runs */
 }
 
 /* rt_ir_byte() is in src/ir.c. */

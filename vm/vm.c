@@ -32,8 +32,12 @@ void vm_tick(struct rcx *b)
 {
     u8 i;
 
-    outputs_tick(b);
-    sound_tick(b);
+    /* Engines with nothing in progress are not called: each would only find that out. No reversing pause; no note
+     * and none queued (a sound is only ever started with a note's length, so none is sounding either). */
+    if (b->out.pause[0] || b->out.pause[1] || b->out.pause[2])
+        outputs_tick(b);
+    if (b->sound.count || b->sound.left)
+        sound_tick(b);
     display_tick(b);
     events_tick(b);
     if (++b->watch_ms >= 60000u) {
