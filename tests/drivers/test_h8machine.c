@@ -145,9 +145,9 @@ static void idle_brick_sleeps_between_ticks(void **state)
     (void)state;
     assert_int_equal(h8m_run(&m, t0 + H8M_CLOCK), 0);
     /* The rest of each millisecond asleep; the millisecond's work itself is what make bench reports. Engines with
-     * nothing in progress are not called, and no task means no vm_run: at most 37 % of the CPU awake (39 % when
-     * they were). */
-    assert_true((double)(m.slept - s0) / (double)(m.h.states - t0) > 0.63);
+     * nothing in progress are not called, and no task means no vm_run. Since the display follows firm0328 (every
+     * 10 ms, blinking watch point, walking figure) it is at most 42 % of the CPU awake. */
+    assert_true((double)(m.slept - s0) / (double)(m.h.states - t0) > 0.58);
 }
 
 int main(int argc, char **argv)
