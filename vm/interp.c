@@ -295,9 +295,34 @@ slow:
 /* Bit n of a task mask: a table, since a shift by a variable count is a loop on the H8/300. */
 static const u16 bit_of[RCX_TASKS] = { 1, 2, 4, 8, 16, 32, 64, 128, 256, 512 };
 
+/*
+ * Several running tasks on the brick: rcx_run_fast() (drivers/h8300/runfast.S) runs their byte codes of run_task()'s
+ * fast kinds in turn without a call, and stops at one it leaves to run_task() (0x100 + the count left, b->rr that
+ * task), or after `count`, or at the end of a round once yield is set (the count left, b->rr after the last task run).
+ * Elsewhere every byte code takes run_task(), as if it had stopped at once.
+ */
+#ifdef __H8300__
+#include "runfast.h"
+u16 rcx_run_fast(struct rcx *b, u16 count);
+RCX_STATIC_ASSERT(rf_prog, offsetof(struct rcx, prog) == RF_PROG && offsetof(struct rcx, rr) == RF_RR);
+RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offsetof(struct rcx, yield) == RF_YIELD);
+RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
+RCX_STATIC_ASSERT(rf_arena, offsetof(struct rcx, arena) == RF_ARENA && offsetof(struct rcx, obj_start) == 0);
+RCX_STATIC_ASSERT(rf_task, sizeof(struct rcx_task) == RF_TASK_SIZE && offsetof(struct rcx_task, sub) == RF_SUB
+                           && offsetof(struct rcx_task, pc) == RF_PC && offsetof(struct rcx_task, local) == RF_LOCAL);
+RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX_SLOT_OBJS == RF_SLOT_OBJS
+                             && RCX_NO_SUB == RF_NO_SUB && RCX_GLOBALS == RF_GLOBALS && RCX_LOCALS == RF_LOCALS);
+RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR
+                            && RCX_OP_SUM_VAR == RF_OP_SUM_VAR && RCX_OP_SUB_VAR == RF_OP_SUB_VAR
+                            && RCX_OP_SJUMP == RF_OP_SJUMP && RCX_SRC_VAR == RF_SRC_VAR
+                            && RCX_SRC_CONST == RF_SRC_CONST);
+#else
+#define rcx_run_fast(b, count) ((u16)(0x100u | (count)))
+#endif
+
 u16 vm_run(struct rcx *b, u16 budget)
 {
-    u16 left = budget, mask;
+    u16 left = budget, mask, fast;
     u8 n = b->rr, count;
 
     while (left && (mask = b->runmask) != 0 && !b->yield) {
@@ -306,6 +331,15 @@ u16 vm_run(struct rcx *b, u16 budget)
             /* The only running task runs on: the scheduler would pick it every time (a chunk at once). */
             n = 0;
             count = left > RCX_RUN_CHUNK ? RCX_RUN_CHUNK : (u8)left;
+        } else {
+            b->rr = n;
+            count = left > 255 ? 255 : (u8)left;
+            fast = rcx_run_fast(b, count);
+            left = (u16)(left - count + (u8)fast);
+            n = b->rr;
+            if (!(fast >> 8))
+                continue;
+            count = 1;
         }
         for (;; n++) {
             if (n >= RCX_TASKS)
