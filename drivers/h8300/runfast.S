@@ -11,7 +11,7 @@
 ;     task after the last one run, as vm_run() leaves it; returns the byte codes left of count (high byte 0);
 ;   - at a running task whose byte code it leaves to run_task(): b->rr is then that task (vm_run()'s search finds
 ;     it first); returns 0x100 + the byte codes left.
-; Lives in .high (F000 up): as fast as the rest of external RAM, and no program memory.
+; Meant for .high (F000 up: as fast, and no program memory), where it does not fit yet: in .text for now.
 ;
 ; Registers: r6 = b, r5 = the task, r4l = its code object's number in the task's own body (prog * 18 + 8 + n),
 ; r4h = byte codes left, r3 = runmask >> n (then >> n + 1), @r7's byte = prog * 18 + 8 (task 0's body).
