@@ -29,6 +29,8 @@ struct h8 {
      * holds; and a register just written (its old value `was`, the new one in mem). */
     uint8_t (*io_read)(struct h8 *h, uint16_t a, uint8_t held);
     void (*io_write)(struct h8 *h, uint16_t a, uint8_t was);
+    /* If set: a byte written where the motor latch also takes it (F000-FB7F and FF80-FF87, rcx-hardware.md 1.1). */
+    void (*latch_write)(struct h8 *h, uint8_t v);
     int may_sleep;          /* SLEEP sets asleep (for the caller to wake) instead of stopping with an error */
     int asleep;
 };
