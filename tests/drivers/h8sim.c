@@ -522,6 +522,18 @@ int h8_load_srec(struct h8 *h, const char *path)
     return 0;
 }
 
+int h8_step_traced(struct h8 *h)
+{
+    uint16_t pc = h->pc;
+    unsigned long long before = h->states;
+
+    if (h8_step(h))
+        return -1;
+    if (h->trace)
+        h->trace(h, pc, (unsigned)(h->states - before));
+    return 0;
+}
+
 long h8_call(struct h8 *h, uint16_t addr, uint16_t r0, uint16_t r1, uint16_t r2,
              const uint16_t *stack, int nstack, unsigned long max_insns)
 {
@@ -545,15 +557,8 @@ long h8_call(struct h8 *h, uint16_t addr, uint16_t r0, uint16_t r1, uint16_t r2,
             snprintf(h->error, sizeof h->error, "jump into the ROM (%04X)", h->pc);
             return -1;
         }
-        if (h->trace) {
-            uint16_t pc = h->pc;
-            unsigned long long before = h->states;
-            if (h8_step(h))
-                return -1;
-            h->trace(h, pc, (unsigned)(h->states - before));
-        } else if (h8_step(h)) {
+        if (h8_step_traced(h))
             return -1;
-        }
     }
     h->r[7] = (uint16_t)(h->r[7] + 2 * nstack);
     return h->r[0];

@@ -38,6 +38,7 @@ struct h8 {
 void h8_reset(struct h8 *h);
 int h8_load_srec(struct h8 *h, const char *path);            /* 0 on success */
 int h8_step(struct h8 *h);                                    /* 0 ok, -1 stopped (error set) */
+int h8_step_traced(struct h8 *h);                             /* the same, then h->trace (if set) with its states */
 void h8_interrupt(struct h8 *h, uint16_t handler);            /* the CPU's interrupt exception, to `handler` */
 /* Call the function at `addr` with r0-r2 as gcc passes its first arguments and `nstack` words pushed after
  * them (stack[0] nearest the return address); runs until it returns, at most `max_insns`. Returns r0, or -1 in
