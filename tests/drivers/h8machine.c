@@ -350,15 +350,8 @@ int h8m_run(struct h8machine *m, unsigned long long until)
         /* LDC, ORC, XORC and ANDC: the CPU runs the next instruction before it takes an interrupt. */
         op = h->mem[h->pc];
         m->inhibit = op >= 0x03 && op <= 0x07;
-        if (h->trace) {
-            uint16_t pc = h->pc;
-            unsigned long long before = h->states;
-            if (h8_step(h))
-                return -1;
-            h->trace(h, pc, (unsigned)(h->states - before));
-        } else if (h8_step(h)) {
+        if (h8_step_traced(h))
             return -1;
-        }
         if (h->asleep && (h->mem[SYSCR] & SSBY)) {
             standby_enter(m);
             next = next_event(m);
