@@ -2,8 +2,9 @@
  * Several tasks in the firmware image against the host's machine: the same random and hand-written programs
  * (several tasks, subroutines, jumps in and out of the code, operands out of range, byte codes the brick's fast loop
  * drivers/h8300/runfast.S leaves to the C) downloaded into both, run with the same budgets, and after each vm_run()
- * the variables, every task's state, code object and pc, and the scheduler's next task compared. The host runs
- * only the C; the image runs its assembler loop for several tasks, so a wrong dispatcher shows here.
+ * the variables, every task whole (every field of struct rcx_task), the running tasks and the scheduler's next task
+ * compared. The host runs only the C (run_task() and its scheduler); the image runs its assembler loop for one task
+ * or several, so a wrong dispatcher shows here.
  *
  * Usage: test_h8tasks <image (COFF; image.srec beside it)> <h8300 nm>
  */
@@ -66,24 +67,44 @@ static void download(uint8_t begin_op, uint8_t n, const uint8_t *code, unsigned 
 
 static uint16_t img16(uint16_t a) { return (uint16_t)(h.mem[a] << 8 | h.mem[(uint16_t)(a + 1)]); }
 
-/* Variables, tasks and the scheduler's position: the same in both. */
+/*
+ * Every field of a task. The host lays struct rcx_task out as gcc does for the H8/300 (u8 and u16 fields only, each
+ * at its natural alignment; the list must cover the struct's every byte, checked in main), but the image's words are
+ * big-endian: field by field, element by element.
+ */
+#define TASK_FIELD(f, width) { offsetof(struct rcx_task, f), sizeof ((struct rcx_task *)0)->f, width, #f }
+static const struct { unsigned at, size, width; const char *name; } task_fields[] = {
+    TASK_FIELD(state, 1),     TASK_FIELD(sub, 1),       TASK_FIELD(pc, 2),         TASK_FIELD(has_ret, 1),
+    TASK_FIELD(ret_sub, 1),   TASK_FIELD(ret_pc, 2),    TASK_FIELD(wake, 2),       TASK_FIELD(priority, 1),
+    TASK_FIELD(loop_depth, 1), TASK_FIELD(loop, 1),     TASK_FIELD(local, 2),      TASK_FIELD(ev.events, 2),
+    TASK_FIELD(ev.mon, 2),    TASK_FIELD(ev.ev_pc, 2),  TASK_FIELD(ev.ac_pc, 2),   TASK_FIELD(ev.ev_sub, 1),
+    TASK_FIELD(ev.ac_sub, 1), TASK_FIELD(ev.rc, 1),     TASK_FIELD(ev.state, 1),
+};
+
+/* Variables, whole tasks and the scheduler's position: the same in both. */
 static void compare(const char *when)
 {
-    unsigned i;
+    unsigned i, f, k;
     for (i = 0; i < RCX_GLOBALS; i++)
         if ((uint16_t)host.global[i] != img16((uint16_t)(brick + RF_GLOBAL + 2 * i)))
             fail_msg("%s: variable %u is %d on the host, %d in the image", when, i, host.global[i],
                      (int16_t)img16((uint16_t)(brick + RF_GLOBAL + 2 * i)));
     for (i = 0; i < RCX_TASKS; i++) {
+        const uint8_t *mine = (const uint8_t *)&host.task[i];
         uint16_t t = (uint16_t)(brick + RF_TASK + RF_TASK_SIZE * i);
-        unsigned k;
-        if (host.task[i].state != h.mem[t] || host.task[i].sub != h.mem[t + RF_SUB]
-            || host.task[i].pc != img16((uint16_t)(t + RF_PC)))
-            fail_msg("%s: task %u is state %u sub %u pc %u on the host, %u %u %u in the image", when, i,
-                     host.task[i].state, host.task[i].sub, host.task[i].pc, h.mem[t], h.mem[t + RF_SUB],
-                     img16((uint16_t)(t + RF_PC)));
-        for (k = 0; k < RCX_LOCALS; k++)
-            assert_int_equal((uint16_t)host.task[i].local[k], img16((uint16_t)(t + RF_LOCAL + 2 * k)));
+        for (f = 0; f < sizeof task_fields / sizeof task_fields[0]; f++)
+            for (k = task_fields[f].at; k < task_fields[f].at + task_fields[f].size; k += task_fields[f].width) {
+                uint16_t want = mine[k], got = h.mem[(uint16_t)(t + k)];
+                if (task_fields[f].width == 2) {
+                    uint16_t w;
+                    memcpy(&w, mine + k, 2);
+                    want = w;
+                    got = img16((uint16_t)(t + k));
+                }
+                if (want != got)
+                    fail_msg("%s: task %u's %s (byte %u) is %u on the host, %u in the image", when, i,
+                             task_fields[f].name, k, want, got);
+            }
     }
     assert_int_equal(host.runmask, img16((uint16_t)(brick + RF_RUNMASK)));
     assert_int_equal(host.rr, h.mem[brick + RF_RR]);
@@ -213,6 +234,16 @@ int main(int argc, char **argv)
     if (argc != 3) {
         fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
         return 2;
+    }
+    {
+        unsigned f, covered = 0;
+        for (f = 0; f < sizeof task_fields / sizeof task_fields[0]; f++)
+            covered += task_fields[f].size;
+        if (covered != sizeof(struct rcx_task) || sizeof(struct rcx_task) != RF_TASK_SIZE) {
+            fprintf(stderr, "test_h8tasks: task_fields covers %u of %u bytes of struct rcx_task (image: %u)\n",
+                    covered, (unsigned)sizeof(struct rcx_task), RF_TASK_SIZE);
+            return 1;
+        }
     }
     image_path = argv[1];
     nm_path = argv[2];
