@@ -49,19 +49,12 @@ void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
 
 s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
 {
-    u16 used = b->log_count ? b->log_count : 1; /* without a log, entry 0 still reports an empty one */
-    u16 i;
+    /* Without a log, entry 0 still reports an empty one (and is the only entry there is to read). */
+    static const u8 empty[3] = { 0xFF, 1, 0 };
+    u16 used = b->log_count ? b->log_count : 1;
 
     if (count > (RCX_REPLY_MAX - 1) / 3 || start > used || count > used - start)
         return -1;
-    for (i = 0; i < count; i++) {
-        if (b->log_count) {
-            memcpy(out + i * 3u, LOG_ADDR(b) + (start + i) * 3u, 3);
-        } else {
-            out[0] = 0xFF;
-            out[1] = 1;
-            out[2] = 0;
-        }
-    }
+    memcpy(out, b->log_count ? LOG_ADDR(b) + start * 3u : empty, count * 3u);
     return (s16)(count * 3u);
 }

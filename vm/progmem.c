@@ -67,14 +67,16 @@ u8 mem_memmap(const struct rcx *b, u8 *out)
     u8 *p = out;
     u16 base = b->arena_addr;
     u16 log = (u16)(base + CODE_END(b));
-    u8 prog, n;
+    u8 tasks, obj, n;
 
-    for (prog = 0; prog < RCX_PROGRAMS; prog++)
-        for (n = 0; n < RCX_SUBS; n++)
-            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_sub(prog, n)]));
-    for (prog = 0; prog < RCX_PROGRAMS; prog++)
-        for (n = 0; n < RCX_TASKS; n++)
-            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_task(prog, n)]));
+    /* The subroutines of every slot, then the tasks: two passes over the objects, n their number in the slot. */
+    for (tasks = 0; tasks < 2; tasks++)
+        for (obj = n = 0; obj < RCX_OBJS; obj++) {
+            if ((n >= RCX_SUBS) == tasks)
+                p = put_word(p, (u16)(base + b->obj_start[obj]));
+            if (++n == RCX_SLOT_OBJS)
+                n = 0;
+        }
     p = put_word(p, log);
     p = put_word(p, (u16)(log + b->log_count * 3u));
     p = put_word(p, (u16)(log + LOG_BYTES(b)));
