@@ -7,9 +7,8 @@
 
 #define LOG_ADDR(b) ((b)->arena + (b)->obj_start[RCX_OBJS])
 
-static void put_entry(struct rcx *b, u16 i, u8 type, u16 value)
+static void put_entry(u8 *e, u8 type, u16 value)
 {
-    u8 *e = LOG_ADDR(b) + i * 3u;
     e[0] = type;
     e[1] = (u8)value;
     e[2] = (u8)(value >> 8);
@@ -24,44 +23,36 @@ void datalog_set(struct rcx *b, u16 entries)
         return; /* no room: no datalog, nothing else disturbed */
     b->log_size = (u16)(entries + 1);
     b->log_count = 1;
-    put_entry(b, 0, 0xFF, 1);
+    put_entry(LOG_ADDR(b), 0xFF, 1);
 }
 
-/* Entry type: source kind in bits 5-7 (0 variable, 1 timer, 2 sensor value, 4 watch), index in bits 0-4. */
-static u8 entry_kind(u8 src)
-{
-    return src == 0 ? 0x00 : src == 1 ? 0x20 : src == 9 ? 0x40 : src == 14 ? 0x80 : 0xFF;
-}
+/* Entry type: source kind in bits 5-7 (0 variable, 1 timer, 2 sensor value, 4 watch), index in bits 0-4; 0xFF for
+ * the sources that cannot be logged. */
+static const u8 entry_kind[15] = { 0x00, 0x20, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x40, 0xFF, 0xFF, 0xFF, 0xFF,
+                                   0x80 };
 
 void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
 {
-    u8 kind = entry_kind(src);
+    u8 kind, *log;
     s16 value;
 
     /* Task locals (index >= 32) cannot be logged: their number does not fit the 5-bit index (spec p. 55). */
-    if (kind == 0xFF || index >= 32 || b->log_count >= b->log_size)
+    if (src >= sizeof entry_kind || (kind = entry_kind[src]) == 0xFF || index >= 32 || b->log_count >= b->log_size)
         return;
     value = source_get(b, t, src, index);
-    put_entry(b, b->log_count, (u8)(kind | index), (u16)value);
-    b->log_count++;
-    put_entry(b, 0, 0xFF, b->log_count);
+    log = LOG_ADDR(b);
+    put_entry(log + b->log_count * 3u, (u8)(kind | index), (u16)value);
+    put_entry(log, 0xFF, ++b->log_count);
 }
 
 s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
 {
-    u16 used = b->log_count ? b->log_count : 1; /* without a log, entry 0 still reports an empty one */
-    u16 i;
+    /* Without a log, entry 0 still reports an empty one (and is the only entry there is to read). */
+    static const u8 empty[3] = { 0xFF, 1, 0 };
+    u16 used = b->log_count ? b->log_count : 1;
 
     if (count > (RCX_REPLY_MAX - 1) / 3 || start > used || count > used - start)
         return -1;
-    for (i = 0; i < count; i++) {
-        if (b->log_count) {
-            memcpy(out + i * 3u, LOG_ADDR(b) + (start + i) * 3u, 3);
-        } else {
-            out[0] = 0xFF;
-            out[1] = 1;
-            out[2] = 0;
-        }
-    }
+    memcpy(out, b->log_count ? LOG_ADDR(b) + start * 3u : empty, count * 3u);
     return (s16)(count * 3u);
 }

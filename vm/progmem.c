@@ -34,18 +34,17 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 /* Keeps the first min(old, new) bytes of the object; bytes it gains are zero. */
 u8 mem_resize(struct rcx *b, u8 obj, u16 size)
 {
-    u16 old = mem_obj_size(b, obj);
-    u16 tail = b->obj_start[obj + 1];
-    u16 used = (u16)(CODE_END(b) + LOG_BYTES(b));
+    u16 *start = &b->obj_start[obj + 1];
+    u16 tail = *start, old = (u16)(tail - start[-1]), free = mem_free(b);
     u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: one path for both */
-    u16 *start;
+    u8 *at = b->arena + tail;
 
-    if (size > old && delta > mem_free(b))
+    if (size > old && delta > free)
         return 0;
-    memmove(b->arena + (u16)(tail + delta), b->arena + tail, (size_t)(used - tail));
+    memmove(b->arena + (u16)(tail + delta), at, (size_t)(RCX_ARENA_SIZE - free - tail)); /* to the datalog end */
     if (size > old)
-        memset(b->arena + tail, 0, delta);
-    for (start = &b->obj_start[obj + 1]; start <= &b->obj_start[RCX_OBJS]; start++)
+        memset(at, 0, delta);
+    for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
     return 1;
 }
@@ -67,14 +66,16 @@ u8 mem_memmap(const struct rcx *b, u8 *out)
     u8 *p = out;
     u16 base = b->arena_addr;
     u16 log = (u16)(base + CODE_END(b));
-    u8 prog, n;
+    u8 tasks, obj, n;
 
-    for (prog = 0; prog < RCX_PROGRAMS; prog++)
-        for (n = 0; n < RCX_SUBS; n++)
-            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_sub(prog, n)]));
-    for (prog = 0; prog < RCX_PROGRAMS; prog++)
-        for (n = 0; n < RCX_TASKS; n++)
-            p = put_word(p, (u16)(base + b->obj_start[rcx_obj_task(prog, n)]));
+    /* The subroutines of every slot, then the tasks: two passes over the objects, n their number in the slot. */
+    for (tasks = 0; tasks < 2; tasks++)
+        for (obj = n = 0; obj < RCX_OBJS; obj++) {
+            if ((n >= RCX_SUBS) == tasks)
+                p = put_word(p, (u16)(base + b->obj_start[obj]));
+            if (++n == RCX_SLOT_OBJS)
+                n = 0;
+        }
     p = put_word(p, log);
     p = put_word(p, (u16)(log + b->log_count * 3u));
     p = put_word(p, (u16)(log + LOG_BYTES(b)));

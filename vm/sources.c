@@ -147,56 +147,43 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             *p = (u8)value;
         return;
     }
-    switch (src) {
-    case RCX_SRC_VAR:
-    case RCX_SRC_INDIRECT:
+    /* Tested one by one: a switch here costs a 74-byte jump table. */
+    if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
         v = var_ref(b, t, index);
         if (v && src == RCX_SRC_INDIRECT)
             v = var_ref(b, t, (u16)*v);
         if (v)
             *v = value;
-        break;
-    case RCX_SRC_TIMER:
-    case RCX_SRC_TIMER10:
+    } else if (src == RCX_SRC_TIMER || src == RCX_SRC_TIMER10) {
         if (value >= 0)
             b->timer[index] = src == RCX_SRC_TIMER ? (u16)value : (u16)((u16)value / 10u);
-        break;
-    case RCX_SRC_RANDOM:
+    } else if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
-        break;
-    case RCX_SRC_PROGRAM:
+    } else if (src == RCX_SRC_PROGRAM) {
         if (value >= 0 && value < RCX_PROGRAMS)
             sched_select_program(b, (u8)value, t != NULL);
-        break;
-    case RCX_SRC_SENSOR_TYPE:
-    case RCX_SRC_SENSOR_MODE:
+    } else if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
         if (value >= 0 && value <= 0xFF) {
             if (src == RCX_SRC_SENSOR_TYPE)
                 sensor_set_type(b, (u8)index, (u8)value);
             else
                 sensor_set_mode(b, (u8)index, (u8)value);
         }
-        break;
-    case RCX_SRC_WATCH:
+    } else if (src == RCX_SRC_WATCH) {
         if (value >= 0 && value < 24 * 60) {
             b->watch = (u16)value;
             b->watch_ms = 0;
         }
-        break;
-    case RCX_SRC_MESSAGE:
+    } else if (src == RCX_SRC_MESSAGE) {
         b->message = (u8)value;
         events_message_changed(b);
-        break;
-    case RCX_SRC_COUNTER:
+    } else if (src == RCX_SRC_COUNTER) {
         b->global[index] = value;
         events_counter_changed(b, (u8)index);
-        break;
-    case RCX_SRC_HYSTERESIS:
-    case RCX_SRC_DURATION:
+    } else {
         /* Hysteresis "must be non-negative"; a duration is 50 ms - 327 s (5-32767). */
         if (value >= (src == RCX_SRC_DURATION ? 5 : 0))
             *(s16 *)(void *)p = value;
-        break;
     }
 }
