@@ -26,6 +26,11 @@ void rt_init(struct rcx_brick *k, u16 arena_addr);
 /* One millisecond has passed (call once per elapsed ms, from the main loop). */
 void rt_tick(struct rcx_brick *k);
 
+/* The milliseconds from now in which rt_tick would only count time and rt_run would do nothing, unless an IR byte,
+ * a button edge or a sample that is not at rest (rt_sensors_resting) comes in meanwhile: a port may skip both then
+ * and hand over the time with rt_advance(k, ms), ms <= rt_quiet_ms(k), which is the same as ms rt_tick calls. */
+u8 rt_quiet_ms(struct rcx_brick *k);
+void rt_advance(struct rcx_brick *k, u8 ms);
 /* Main-loop work: complete packets are executed and answered, transmit requests sent, then up to `budget` byte
  * codes run. Returns the byte codes executed. */
 u16 rt_run(struct rcx_brick *k, u16 budget);
@@ -35,6 +40,11 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 
 /* A 10-bit A/D sample of input 0-2, every 1 ms; the battery in millivolts whenever measured. */
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
+/* After samples of all inputs: nonzero when another scan equal to them would change nothing, which
+ * rt_sensors_resting then tells until that may no longer be so (vm/sensors.h, sensors_at_rest). A port may skip
+ * such scans. */
+#define rt_sensors_at_rest(k) sensors_at_rest(&(k)->vm)
+#define rt_sensors_resting(k) ((k)->vm.sensors_rest)
 void rt_battery(struct rcx_brick *k, u16 millivolts);
 
 /* A debounced button edge. */

@@ -47,6 +47,18 @@ enum display_view { DISPLAY_WATCH = 0, DISPLAY_INPUT_1, DISPLAY_INPUT_2, DISPLAY
 #define DISPLAY_MARK_DOT3 DISPLAY_SEG(7, 0)
 #define DISPLAY_MARK_DOT4 DISPLAY_SEG(7, 4)
 
+/* What the image shows besides the marks (vm/display.c); view1 = view + 1, 0 when the marks changed (or at
+ * power-on): then the image is composed whatever the rest. */
+struct display_key {
+    s16 v;               /* the number and its decimal places */
+    u8 places;
+    u8 view1;
+    u8 prog;
+    u8 lit;              /* figure walking, IR mark, inputs pressed */
+    u8 modes;            /* the outputs' modes on the wire, 2 bits each */
+    u8 pad;
+};
+
 struct rcx_display {
     u8 view;             /* enum display_view */
     u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
@@ -57,12 +69,13 @@ struct rcx_display {
     u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
+    struct display_key key;  /* what it was composed from */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
 void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
-void display_tick(struct rcx *b);                                   /* every 1 ms */
+void display_tick(struct rcx *b);                                   /* every 10 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
  * talking. A field store, not a call: it is made in the IR layer's busiest paths. */
 #define display_ir_activity(b) ((b)->display.ir = DISPLAY_IR_STEPS)
