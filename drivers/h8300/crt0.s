@@ -39,18 +39,19 @@ _rcx_head_end:
 	bsr	_rcx_fill
 
 	; Copy .high to F000 (words: the script aligns its start, end and load address). Each of these writes also
-	; reaches the motor latch, which is zeroed right after: the motors may see a few ms of stray patterns.
+	; reaches the motor latch, which is zeroed by the very next instruction: the motors see each stray pattern for
+	; well under a microsecond (they would see them for some 2 ms if it were zeroed after the copy), and float after.
 	mov.w	#_rcx_high_load,r0
 	mov.w	#_rcx_high_start,r1
 	mov.w	#_rcx_high_end,r2
+	sub.b	r4l,r4l
 	bra	6f
 5:	mov.w	@r0+,r3
 	mov.w	r3,@r1
+	mov.b	r4l,@_rcx_motor_latch:8	; motor latch (FF80) = 0: all outputs float
 	adds	#2,r1
 6:	cmp.w	r2,r1
 	bne	5b
-	sub.b	r0l,r0l
-	mov.b	r0l,@_rcx_motor_latch:8	; motor latch (FF80) = 0: all outputs float
 
 	; Clear .bss (it starts where .high was loaded), and on-chip RAM from its variables up: the stack and the
 	; .eight variables above it. The linker script aligns all ends to words.

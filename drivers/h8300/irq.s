@@ -132,12 +132,16 @@ _rcx_irq_return:
 ; Copied to on-chip RAM at FD80 (16 bytes, up to FD8F) by hal_power_off and called there: while external
 ; RAM is in power-save (P5.2 = 1) no instruction or data may come from it. Interrupts must be enabled for
 ; the IRQ1 request (On-Off) to end the standby; the final rts doubles as the IRQ1 handler.
+; An IRQ1 request may be waiting already: a falling edge of On-Off latched while the brick was on (the press
+; that switched it off, contact bounce). After andc the CPU runs one more instruction before it takes an
+; interrupt; were that the sleep, such a request would end the standby at once. So the bset comes between:
+; the request is taken (by the rts) before the sleep, and only a new press wakes the brick.
 	.section .text
 	.global	_rcx_standby_code
 
 _rcx_standby_code:
-	bset	#2,@0xba:8		; P5.2: external RAM to power-save
 	andc	#0x7f,ccr
+	bset	#2,@0xba:8		; P5.2: external RAM to power-save
 	sleep
 	orc	#0x80,ccr
 	bclr	#2,@0xba:8		; external RAM awake

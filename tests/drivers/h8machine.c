@@ -1,4 +1,5 @@
-/* The brick's peripherals around the H8/300 simulator (h8machine.h). Registers: rcx-hardware.md 1.6, 3.3, 3.8, 3.9. */
+/* The brick's peripherals around the H8/300 simulator (h8machine.h). Registers: rcx-hardware.md 1.6, 3.3, 3.8, 3.9;
+ * buttons and standby: 3.5, 3.11. */
 #include <stdio.h>
 #include <string.h>
 #include "h8image.h"
@@ -31,10 +32,19 @@
 #define AD_SCAN_STATES (4 * 266) /* four conversions at φ/... 266 states each (CKS = 0) */
 #define P4DR 0xFFB7
 #define P7PIN 0xFFBE
+#define P6DR 0xFFBB
+#define LCD_SCL 0x20
+#define LCD_SDA 0x40
+#define SYSCR 0xFFC4
+#define SSBY 0x80
+#define ISCR 0xFFC6
+#define IER 0xFFC7
+#define IRQ0_ENTRY 6 /* the index of FD94 in ramvec[]; FD96 (IRQ1) follows */
 
 /* Where each interrupt's entry lives: our own stand-in for the ROM's trampoline, one per RAM vector. */
 #define ENTRY(n) (0x0100 + 16 * (n))
-static const uint16_t ramvec[] = { 0xFDA2, 0xFDB4, 0xFDB6, 0xFDB8, 0xFDBA, 0xFDBC }; /* OCIA ERI RXI TXI TEI ADI */
+static const uint16_t ramvec[] = { 0xFDA2, 0xFDB4, 0xFDB6, 0xFDB8, 0xFDBA, 0xFDBC, /* OCIA ERI RXI TXI TEI ADI */
+                                   0xFD94, 0xFD96 };                                /* IRQ0 IRQ1 */
 
 static struct h8machine *self; /* the hooks get the struct h8, first member of the machine */
 
@@ -57,11 +67,37 @@ static uint8_t io_read(struct h8 *h, uint16_t a, uint8_t held)
     (void)h;
     if (a == SCI_SSR)
         ssr_read |= held;
-    if (a == P4DR)
-        return (uint8_t)(held | 0x06); /* On-Off and Run released */
+    if (a == P4DR) /* On-Off and Run read 0 while pressed */
+        return (uint8_t)((held & ~0x06) | (self->held & H8M_ONOFF ? 0 : 0x02) | (self->held & H8M_RUN ? 0 : 0x04));
     if (a == P7PIN)
-        return 0xC0;                   /* View and Prgm released */
+        return (uint8_t)((self->held & H8M_VIEW ? 0 : 0x40) | (self->held & H8M_PRGM ? 0 : 0x80));
     return held;
+}
+
+/* The LCD bus (rcx-hardware.md §3.6) as the controller hears it: START and STOP are SDA changing while SCL stays
+ * high; a bit is taken as SCL rises, eight to a byte and then the acknowledge clock. */
+static void lcd_bus(struct h8machine *m, uint8_t was, uint8_t now)
+{
+    if ((was & now & LCD_SCL) && (was ^ now) & LCD_SDA) {
+        if (now & LCD_SDA) {
+            if (m->lcd_in) {
+                memcpy(m->lcd, m->lcd_rx, m->lcd_n);
+                m->lcd_len = m->lcd_n;
+                m->lcd_frames++;
+            }
+            m->lcd_in = 0;
+        } else {
+            m->lcd_in = 1;
+            m->lcd_n = m->lcd_bits = 0;
+        }
+    } else if (m->lcd_in && !(was & LCD_SCL) && (now & LCD_SCL)) {
+        if (m->lcd_bits < 8 && m->lcd_n < H8M_LCD)
+            m->lcd_rx[m->lcd_n] = (uint8_t)(m->lcd_rx[m->lcd_n] << 1 | !!(now & LCD_SDA));
+        if (++m->lcd_bits == 9) {
+            m->lcd_bits = 0;
+            m->lcd_n += m->lcd_n < H8M_LCD;
+        }
+    }
 }
 
 static void io_write(struct h8 *h, uint16_t a, uint8_t was)
@@ -69,7 +105,9 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
     struct h8machine *m = self;
     uint8_t now = h->mem[a];
 
-    if (a == FRT_FRC || a == FRT_FRC + 1)
+    if (a == P6DR)
+        lcd_bus(m, was, now);
+    else if (a == FRT_FRC || a == FRT_FRC + 1)
         m->tick_at = h->states + 32ull * (h8_read16(h, FRT_OCR) + 1u); /* φ/32, cleared at the match */
     else if (a == AD_ADCSR)
         m->ad_at = now & ADST ? (m->ad_at ? m->ad_at : h->states + AD_SCAN_STATES) : 0;
@@ -97,6 +135,118 @@ static void receive_due(struct h8machine *m)
         }
         m->rx_tail++;
     }
+}
+
+/*
+ * Buttons and the IRQ pins. On-Off drives IRQ1 and Run IRQ0 (rcx-hardware.md §3.5); ISCR bit n = 1 makes IRQn
+ * edge-sensed: a falling edge (a press) latches a request until the CPU accepts it; bit n = 0 makes it level-sensed:
+ * requested while the pin is low. IER bit n lets the request through to the CPU. Assumed, as the H8/3297 manual's
+ * block diagram is read here: the edge latches whatever IER holds (latch_needs_ier selects the other reading), and a
+ * change of ISCR keeps a latched edge. With contact bounce a press is several edges, so both matter.
+ */
+static unsigned long long next_change(const struct h8machine *m)
+{
+    unsigned long long t = ~0ull;
+    unsigned i;
+    for (i = 0; i < m->nchanges; i++)
+        if (m->change_at[i] < t)
+            t = m->change_at[i];
+    return t;
+}
+
+static uint8_t irq_pins_low(const struct h8machine *m)
+{
+    return (uint8_t)((m->held & H8M_ONOFF ? 0x02 : 0) | (m->held & H8M_RUN ? 0x01 : 0));
+}
+
+/* The changes due by now, oldest first. */
+static void buttons_due(struct h8machine *m)
+{
+    unsigned long long t;
+    while ((t = next_change(m)) <= m->h.states) {
+        unsigned i = 0, n = m->nchanges - 1;
+        uint8_t low = irq_pins_low(m);
+        while (m->change_at[i] != t)
+            i++;
+        if (m->change_down[i])
+            m->held |= m->change_button[i];
+        else
+            m->held &= (uint8_t)~m->change_button[i];
+        low = (uint8_t)(irq_pins_low(m) & ~low & m->h.mem[ISCR]); /* falling edges, where edge-sensed */
+        m->irq_latched |= m->latch_needs_ier ? low & m->h.mem[IER] : low;
+        m->change_at[i] = m->change_at[n]; /* the last one takes its place */
+        m->change_button[i] = m->change_button[n];
+        m->change_down[i] = m->change_down[n];
+        m->nchanges = n;
+    }
+}
+
+/* IRQ0-1 requests that IER lets through, as a bit mask. */
+static uint8_t irq_requests(const struct h8machine *m)
+{
+    uint8_t iscr = m->h.mem[ISCR];
+    return (uint8_t)(((m->irq_latched & iscr) | (irq_pins_low(m) & ~iscr)) & m->h.mem[IER] & 0x03);
+}
+
+int h8m_button(struct h8machine *m, uint8_t button, int down, unsigned long long at)
+{
+    if (m->nchanges == H8M_CHANGES)
+        return -1;
+    m->change_at[m->nchanges] = at;
+    m->change_button[m->nchanges] = button;
+    m->change_down[m->nchanges++] = (uint8_t)!!down;
+    return 0;
+}
+
+/*
+ * Software standby (H8/3297 hardware manual, power-down modes; rcx-hardware.md §3.11): SLEEP with SYSCR.SSBY set
+ * stops the clock, and the on-chip supporting modules (FRT, TMR0/1, SCI, A/D) are initialised: their registers take
+ * their reset values, a byte being sent or received is lost. Ports, RAM and CPU registers keep their contents. An
+ * IRQ0/1 request that IER enables and the CPU does not mask (NMI is not wired on the RCX: not modelled) starts the
+ * oscillator; after the settling time SYSCR.STS selects, the clock runs again and the interrupt is taken. Assumed:
+ * a request that is gone by then (a level-sensed pin released) leaves the chip in standby.
+ */
+static void standby_enter(struct h8machine *m)
+{
+    static const struct { uint16_t a; uint8_t v; } reset[] = {
+        { 0xFF90, 0x01 }, { 0xFF91, 0x00 }, { 0xFF92, 0x00 }, { 0xFF93, 0x00 }, { 0xFF94, 0xFF }, { 0xFF95, 0xFF },
+        { 0xFF96, 0x00 }, { 0xFF97, 0xE0 },                                         /* FRT (OCRA, as OCRS = 0) */
+        { 0xFFC8, 0x00 }, { 0xFFC9, 0x10 }, { 0xFFCA, 0xFF }, { 0xFFCB, 0xFF }, { 0xFFCC, 0x00 }, /* TMR0 */
+        { 0xFFD0, 0x00 }, { 0xFFD1, 0x10 }, { 0xFFD2, 0xFF }, { 0xFFD3, 0xFF }, { 0xFFD4, 0x00 }, /* TMR1 */
+        { 0xFFD8, 0x00 }, { 0xFFD9, 0xFF }, { 0xFFDA, 0x00 }, { 0xFFDB, 0xFF }, { 0xFFDC, 0x84 }, { 0xFFDD, 0x00 },
+        { 0xFFE8, 0x00 }, { 0xFFE9, 0x7F },                                         /* SCI, A/D */
+    };
+    unsigned i;
+
+    m->standby = 1;
+    m->standbys++;
+    m->settle_at = 0;
+    m->tick_at = m->ad_at = m->tx_at = 0;
+    for (i = 0; i < sizeof reset / sizeof reset[0]; i++)
+        m->h.mem[reset[i].a] = reset[i].v;
+    memset(m->h.mem + AD_ADDRA, 0, 8);
+}
+
+/* Time in standby up to `to` at most (0), or 0 states and the wake-up (1) once the settling is over. */
+static int standby_wait(struct h8machine *m, unsigned long long to)
+{
+    struct h8 *h = &m->h;
+    if (!m->settle_at && irq_requests(m) && !(h->ccr & 0x80)) {
+        static const unsigned sts[8] = { 8192, 16384, 32768, 65536, 131072, 131072, 131072, 131072 };
+        m->settle_at = h->states + sts[h->mem[SYSCR] >> 4 & 7];
+    }
+    if (m->settle_at && h->states >= m->settle_at) {
+        m->settle_at = 0;
+        if (irq_requests(m)) {
+            m->standby = 0;
+            return 1;
+        }
+    }
+    if (m->settle_at && m->settle_at < to)
+        to = m->settle_at;
+    m->standby_states += to - h->states;
+    h->states = to;
+    return 0;
 }
 
 /* The peripherals' events due by now. */
@@ -128,11 +278,12 @@ static void events(struct h8machine *m)
             h->mem[SCI_SSR] |= TEND;
     }
     receive_due(m);
+    buttons_due(m);
 }
 
 static unsigned long long next_event(const struct h8machine *m)
 {
-    unsigned long long t = ~0ull;
+    unsigned long long t = next_change(m);
     if (m->tick_at && m->tick_at < t)
         t = m->tick_at;
     if (m->ad_at && m->ad_at < t)
@@ -171,12 +322,21 @@ int h8m_run(struct h8machine *m, unsigned long long until)
     self = m;
     while (h->states < until) {
         int irq;
+        uint8_t op;
         if (h->states >= next) {
             events(m);
             next = next_event(m);
         }
-        if (!(h->ccr & 0x80) && (irq = pending(h)) >= 0)
+        if (m->standby && !standby_wait(m, next < until ? next : until))
+            continue;
+        /* IRQ0 and IRQ1 come first (vectors 4 and 5); an edge's latch is cleared as it is accepted. */
+        if (!m->inhibit && !(h->ccr & 0x80) && (irq = irq_requests(m)) != 0) {
+            irq = irq & 1 ? 0 : 1;
+            m->irq_latched &= (uint8_t)~(1u << irq);
+            h8_interrupt(h, ENTRY(IRQ0_ENTRY + irq));
+        } else if (!m->inhibit && !(h->ccr & 0x80) && (irq = pending(h)) >= 0) {
             h8_interrupt(h, ENTRY(irq));
+        }
         if (h->asleep) {
             unsigned long long to = next < until ? next : until;
             if (to == ~0ull) {
@@ -187,14 +347,14 @@ int h8m_run(struct h8machine *m, unsigned long long until)
             h->states = to;
             continue;
         }
-        if (h->trace) {
-            uint16_t pc = h->pc;
-            unsigned long long before = h->states;
-            if (h8_step(h))
-                return -1;
-            h->trace(h, pc, (unsigned)(h->states - before));
-        } else if (h8_step(h)) {
+        /* LDC, ORC, XORC and ANDC: the CPU runs the next instruction before it takes an interrupt. */
+        op = h->mem[h->pc];
+        m->inhibit = op >= 0x03 && op <= 0x07;
+        if (h8_step_traced(h))
             return -1;
+        if (h->asleep && (h->mem[SYSCR] & SSBY)) {
+            standby_enter(m);
+            next = next_event(m);
         }
     }
     return 0;
@@ -296,6 +456,9 @@ int h8m_boot(struct h8machine *m, const char *image, const char *nm)
         p[5] = (uint8_t)ramvec[i];
     }
     m->h.mem[SCI_SSR] = TDRE | TEND; /* the SCI's state after reset */
+    /* As the ROM hands over (rcx-hardware.md §2.3, §6), where crt0.s (run above) leaves them alone. */
+    m->h.mem[ISCR] = 0x03;             /* IRQ0 and IRQ1 edge-sensed */
+    m->h.mem[SYSCR] = 0xCB;            /* SSBY set */
     for (i = 0; i < 3; i++)
         m->ad_raw[i] = 1023;           /* nothing connected */
     m->ad_raw[3] = 300;                /* 8.4 V */

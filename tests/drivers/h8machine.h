@@ -3,7 +3,9 @@
  * uses, so that time, interrupts and sleep are the image's own. Modelled: the FRT compare match A (the tick), the
  * A/D scan of AN0-AN3, the SCI at 2400 Bd 8O1 with the brick hearing its own transmission, SLEEP until the next
  * interrupt, and the ROM's interrupt entry (push r6, call the RAM vector, pop r6, rte: rcx-hardware.md §6) as code
- * of its own in the on-chip ROM's place. Buttons read as released. Everything else reads back what was written.
+ * of its own in the on-chip ROM's place. Everything else reads back what was written.
+ * Buttons (h8m_button) and the IRQ0/IRQ1 pins they drive, software standby and the wake-up from it, and the LCD
+ * bus's frames (decoded from the port writes) too; h8machine.c says what of that is assumed.
  */
 #ifndef H8MACHINE_H
 #define H8MACHINE_H
@@ -15,6 +17,13 @@
 #define H8M_BYTE (H8M_CLOCK * 11 / 2400) /* start, 8 data, parity, stop */
 #define H8M_RX 512
 #define H8M_TX 4096
+#define H8M_CHANGES 64
+#define H8M_LCD 16
+/* Buttons, as bits of `held` and of h8m_button (rcx-hardware.md §3.5). */
+#define H8M_ONOFF 0x01 /* P4.1, IRQ1 */
+#define H8M_RUN 0x02   /* P4.2, IRQ0 */
+#define H8M_VIEW 0x04  /* P7.6 */
+#define H8M_PRGM 0x08  /* P7.7 */
 
 struct h8machine {
     struct h8 h;
@@ -33,10 +42,29 @@ struct h8machine {
     unsigned long long slept;               /* states spent in SLEEP */
     unsigned long long ms_seen;             /* compare matches so far */
     uint8_t last_op;                        /* the host's last opcode, for its toggle bit */
+    uint8_t held;                           /* buttons down now (H8M_ONOFF ...) */
+    unsigned long long change_at[H8M_CHANGES]; /* button changes to come (h8m_button), in no particular order */
+    uint8_t change_button[H8M_CHANGES], change_down[H8M_CHANGES];
+    unsigned nchanges;
+    uint8_t irq_latched;                    /* falling edges on IRQ0/IRQ1 not yet accepted (bit n: IRQn) */
+    int latch_needs_ier;                    /* the other reading of the manual: an edge latches only while IER
+                                             * enables it (default: whatever IER holds) */
+    int inhibit;                            /* the last instruction wrote CCR: no interrupt before the next */
+    int standby;                            /* in software standby: no clock, the peripherals reset */
+    unsigned long long settle_at;           /* the end of the oscillator's settling once woken, 0 before */
+    unsigned standbys;                      /* software standbys entered */
+    unsigned long long standby_states;      /* states spent in standby, settling included */
+    uint8_t lcd[H8M_LCD];                   /* the last complete frame on the LCD bus (START to STOP) */
+    unsigned lcd_len, lcd_frames;
+    uint8_t lcd_rx[H8M_LCD];                /* the frame being sent */
+    unsigned lcd_n, lcd_bits;
+    int lcd_in;
 };
 
 /* Load the image, run its start-up code, reset the peripherals; main() is next. 0 on success. */
 int h8m_boot(struct h8machine *m, const char *image, const char *nm);
+/* Press (down != 0) or release `button` at `at` (states). 0, or -1 if too many changes are waiting. */
+int h8m_button(struct h8machine *m, uint8_t button, int down, unsigned long long at);
 /* Run until h.states reaches `until`. 0, or -1 with h.error set. */
 int h8m_run(struct h8machine *m, unsigned long long until);
 /* Queue bytes from the host's IR tower, the first received at `at` (or as soon as the last queued one). */

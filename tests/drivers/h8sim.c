@@ -31,11 +31,18 @@ static uint8_t rd8(struct h8 *h, uint16_t a)
     return h->mem[a];
 }
 
+static void latch(struct h8 *h, uint16_t a, uint8_t v)
+{
+    if (h->latch_write && ((a >= 0xF000 && a < 0xFB80) || (a >= 0xFF80 && a < 0xFF88)))
+        h->latch_write(h, v);
+}
+
 static void wr8(struct h8 *h, uint16_t a, uint8_t v)
 {
     uint8_t was = h->mem[a];
     h->states += region(a) == ONCHIP ? 2 : 3;
     h->mem[a] = v;
+    latch(h, a, v);
     if (h->io_write && a >= 0xFF88)
         h->io_write(h, a, was);
 }
@@ -74,6 +81,8 @@ static void wr16(struct h8 *h, uint16_t a, uint16_t v)
     h->states += region(a) == ONCHIP ? 2 : 6;
     aligned(h, a);
     h8_write16(h, a, v);
+    latch(h, a, (uint8_t)(v >> 8));
+    latch(h, (uint16_t)(a + 1), (uint8_t)v);
     if (h->io_write && a >= 0xFF88) {
         h->io_write(h, a, was);
         h->io_write(h, (uint16_t)(a + 1), was1);
@@ -513,6 +522,18 @@ int h8_load_srec(struct h8 *h, const char *path)
     return 0;
 }
 
+int h8_step_traced(struct h8 *h)
+{
+    uint16_t pc = h->pc;
+    unsigned long long before = h->states;
+
+    if (h8_step(h))
+        return -1;
+    if (h->trace)
+        h->trace(h, pc, (unsigned)(h->states - before));
+    return 0;
+}
+
 long h8_call(struct h8 *h, uint16_t addr, uint16_t r0, uint16_t r1, uint16_t r2,
              const uint16_t *stack, int nstack, unsigned long max_insns)
 {
@@ -536,15 +557,8 @@ long h8_call(struct h8 *h, uint16_t addr, uint16_t r0, uint16_t r1, uint16_t r2,
             snprintf(h->error, sizeof h->error, "jump into the ROM (%04X)", h->pc);
             return -1;
         }
-        if (h->trace) {
-            uint16_t pc = h->pc;
-            unsigned long long before = h->states;
-            if (h8_step(h))
-                return -1;
-            h->trace(h, pc, (unsigned)(h->states - before));
-        } else if (h8_step(h)) {
+        if (h8_step_traced(h))
             return -1;
-        }
     }
     h->r[7] = (uint16_t)(h->r[7] + 2 * nstack);
     return h->r[0];

@@ -29,6 +29,8 @@ struct h8 {
      * holds; and a register just written (its old value `was`, the new one in mem). */
     uint8_t (*io_read)(struct h8 *h, uint16_t a, uint8_t held);
     void (*io_write)(struct h8 *h, uint16_t a, uint8_t was);
+    /* If set: a byte written where the motor latch also takes it (F000-FB7F and FF80-FF87, rcx-hardware.md 1.1). */
+    void (*latch_write)(struct h8 *h, uint8_t v);
     int may_sleep;          /* SLEEP sets asleep (for the caller to wake) instead of stopping with an error */
     int asleep;
 };
@@ -36,6 +38,7 @@ struct h8 {
 void h8_reset(struct h8 *h);
 int h8_load_srec(struct h8 *h, const char *path);            /* 0 on success */
 int h8_step(struct h8 *h);                                    /* 0 ok, -1 stopped (error set) */
+int h8_step_traced(struct h8 *h);                             /* the same, then h->trace (if set) with its states */
 void h8_interrupt(struct h8 *h, uint16_t handler);            /* the CPU's interrupt exception, to `handler` */
 /* Call the function at `addr` with r0-r2 as gcc passes its first arguments and `nstack` words pushed after
  * them (stack[0] nearest the return address); runs until it returns, at most `max_insns`. Returns r0, or -1 in

@@ -464,6 +464,21 @@ static size_t image_bytes(uint8_t *out, size_t max)
  * the rest packed): every byte of the image must be unpacked to its run address, section .high, unpacked last, then
  * copied to F000 where it runs (the loader puts nothing there), the motor latch zeroed after that copy (on the brick
  * every write to F000-FB7F reaches it), and .bss, which starts where .high was unpacked, cleared. */
+/* The motor latch during start-up: how long it held something other than 0 (the copy to F000 writes it too). */
+static uint8_t latch_now;
+static unsigned long long latch_since, latch_driven, latch_longest;
+static void latch_seen(struct h8 *hh, uint8_t v)
+{
+    if (latch_now) {
+        unsigned long long held = hh->states - latch_since;
+        latch_driven += held;
+        if (held > latch_longest)
+            latch_longest = held;
+    }
+    latch_now = v;
+    latch_since = hh->states;
+}
+
 static void startup_unpacks_the_image_and_copies_code_to_f000(void **state)
 {
     static uint8_t image[0x8000];
@@ -495,7 +510,16 @@ static void startup_unpacks_the_image_and_copies_code_to_f000(void **state)
 
     h.mem[0xFF80] = 0xC3;                                       /* what the copy left in the latch */
     memset(h.mem + 0xC000, 0xA5, 0x3000);                       /* RAM past the largest download holds garbage */
+    latch_now = 0;
+    latch_driven = latch_longest = 0;
+    h.latch_write = latch_seen;
     assert_int_equal(h8_image_start(&h), 0);
+    h.latch_write = NULL;
+    /* The copy to F000 drives the motors with whatever it writes: each pattern must be gone at once (well under
+     * 1 µs, 16 states), not left for the whole copy (some 2 ms). */
+    assert_int_equal(latch_now, 0);
+    if (latch_longest > 16)
+        fail_msg("the motor latch held a stray pattern for %llu states (%llu in all)", latch_longest, latch_driven);
     /* Every run address holds the image's byte: code and data from 0x8000, section .high at F000. */
     assert_memory_equal(h.mem + 0x8000, image, (size_t)(load - 0x8000));
     assert_memory_equal(h.mem + start, image + (load - 0x8000), (size_t)(end - start));
