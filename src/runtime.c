@@ -36,24 +36,6 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
     return k->vm.runmask ? vm_run(&k->vm, budget) : 0; /* no call when no task runs */
 }
 
-/* While nothing happens: no task, nothing for the IR layer to time, send or answer, no power request. */
-u8 rt_quiet_ms(struct rcx_brick *k)
-{
-    struct rcx *b = &k->vm;
-    u16 ui = ui_quiet_ms(k);
-    u8 n = vm_quiet_ms(b);
-
-    if (!n || b->runmask || b->boot_mode || b->turn_off || k->ui.off || ir_tick_due(k) || ir_poll_due(k))
-        return 0;
-    return ui < n ? (u8)ui : n;
-}
-
-void rt_advance(struct rcx_brick *k, u8 ms)
-{
-    vm_advance(&k->vm, ms);
-    ui_advance(k, ms);
-}
-
 /* rt_ir_byte() is in src/ir.c. */
 
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)

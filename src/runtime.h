@@ -26,11 +26,6 @@ void rt_init(struct rcx_brick *k, u16 arena_addr);
 /* One millisecond has passed (call once per elapsed ms, from the main loop). */
 void rt_tick(struct rcx_brick *k);
 
-/* The milliseconds from now in which rt_tick would only count time and rt_run would do nothing, unless an IR byte,
- * a button edge or a sample that is not at rest (rt_sensors_resting) comes in meanwhile: a port may skip both then
- * and hand over the time with rt_advance(k, ms), ms <= rt_quiet_ms(k), which is the same as ms rt_tick calls. */
-u8 rt_quiet_ms(struct rcx_brick *k);
-void rt_advance(struct rcx_brick *k, u8 ms);
 /* Main-loop work: complete packets are executed and answered, transmit requests sent, then up to `budget` byte
  * codes run. Returns the byte codes executed. */
 u16 rt_run(struct rcx_brick *k, u16 budget);

@@ -69,12 +69,6 @@ void ui_tick(struct rcx_brick *k)
     }
 }
 
-/* As vm_quiet_ms: the ticks that would only count (no command or button to restart the count, no new minute). */
-u16 ui_quiet_ms(const struct rcx_brick *k)
-{
-    return k->vm.idle_reset ? 0 : (u16)(UI_MINUTE_MS - 1 - k->ui.idle_ms);
-}
-
 /* A new battery reading (every 64 ms on the brick). */
 void ui_battery(struct rcx_brick *k)
 {

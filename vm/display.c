@@ -119,8 +119,6 @@ u8 program_running(const struct rcx *b)
     const struct rcx_task *t = b->task;
     u8 n = RCX_TASKS, any = RCX_TASK_IDLE;
 
-    if (!b->runmask && !b->waiting)
-        return 0; /* nothing running, nothing waiting */
     do
         any |= t++->state;
     while (--n);
@@ -128,79 +126,61 @@ u8 program_running(const struct rcx *b)
 }
 
 /*
- * What the image is made of besides the marks, worked out cheaply every refresh: the image is composed again only
- * when this differs from the last refresh's (the digits cost far more than this). display_mark() invalidates it.
+ * The digits (program number and the view's number) are worked out again only when what they show changed: they
+ * cost far more than the rest, which is composed at every refresh.
  */
-#define KEY_WALKING 0x01
-#define KEY_IR 0x02
-#define KEY_PRESSED 0x04 /* << input */
-static void key_of(struct rcx *b, struct display_key *k)
+static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
-    const struct rcx_display *d = &b->display;
-    u8 i, view, on = 0;
+    struct rcx_display *d = &b->display;
+    u8 i, mode, view, places;
     s16 v;
 
-    k->prog = b->prog;
-    /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
-    if (program_running(b) && (u8)(d->phase / DISPLAY_FRAME_STEPS) & 1)
-        on = KEY_WALKING;
-    if (d->ir)
-        on |= KEY_IR;
-    for (i = 0; i < RCX_SENSORS; i++)
-        if (b->sensor[i].boolean)
-            on |= (u8)(KEY_PRESSED << i);
-    k->lit = on;
-    k->modes = (u8)(outputs_mode(b, 0) | outputs_mode(b, 1) << 2 | outputs_mode(b, 2) << 4);
     view = d->view;
-    k->view1 = (u8)(view + 1);
     /* `places` is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
-        k->places = (u8)(WATCH_POINT + (d->phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
+        places = (u8)(WATCH_POINT + (d->phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
     } else if (view <= DISPLAY_INPUT_3) {
         s = &b->sensor[view - DISPLAY_INPUT_1];
         v = s->value;
-        k->places = (u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40; /* Celsius, Fahrenheit: tenths */
+        places = (u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40; /* Celsius, Fahrenheit: tenths */
     } else if (view <= DISPLAY_OUTPUT_C) {
         /* 0 while the output is not running, power + 1 (1-8) while it is, as firm0328 shows it. */
         i = outputs_status(b, (u8)(view - DISPLAY_OUTPUT_A));
         v = (i & RCX_MOTOR_ON) ? (s16)((i & RCX_MOTOR_POWER) + 1) : 0;
-        k->places = 0;
+        places = 0;
     } else {
         /* Reading the random source would advance the program's random sequence at every refresh. */
         v = d->user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, d->user_source, d->user_index);
-        k->places = d->user_precision;
+        places = d->user_precision;
     }
-    k->v = v;
-}
-
-/* Four word comparisons, where memcmp would take a byte at a time. */
-typedef u16 __attribute__((may_alias)) key_word;
-RCX_STATIC_ASSERT(key_is_four_words, sizeof(struct display_key) == 4 * sizeof(key_word));
-static u8 same_key(const struct display_key *a, const struct display_key *b)
-{
-    const key_word *p = (const key_word *)a, *q = (const key_word *)b;
-
-    return (u8)(p[0] == q[0] && p[1] == q[1] && p[2] == q[2] && p[3] == q[3]);
-}
-
-static void compose(const struct rcx_display *d, const struct display_key *k)
-{
-    u8 i, modes = k->modes, on = k->lit;
-
-    memcpy(work, d->marks, DISPLAY_BYTES);
-    digit(0, (u8)(k->prog + 1));
-    work[0] |= on & KEY_WALKING ? FIGURE_WALKING : FIGURE_STANDING;
-    if (on & KEY_IR)
+    i = (u8)(b->prog + 1);
+    if (v != d->digits_v || (u8)(places + 1) != d->digits_places1 || i != d->digits_prog1) {
+        memset(work, 0, DISPLAY_BYTES);
+        d->digits_v = v;
+        d->digits_places1 = (u8)(places + 1);
+        d->digits_prog1 = i;
+        digit(0, i);
+        number(v, places);
+        memcpy(d->digits, work, DISPLAY_BYTES);
+    }
+    for (i = 0; i < DISPLAY_BYTES; i++)
+        work[i] = (u8)(d->marks[i] | d->digits[i]);
+    /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
+    if ((u8)(d->phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
+        work[0] |= FIGURE_WALKING;
+    else
+        work[0] |= FIGURE_STANDING;
+    if (d->ir)
         lit(DISPLAY_MARK_IR_LOW);
-    for (i = 0; i < RCX_SENSORS; i++, modes >>= 2) {
-        if (on & (KEY_PRESSED << i))
+    for (i = 0; i < RCX_SENSORS; i++) {
+        if (b->sensor[i].boolean)
             mark(INPUT_PRESSED + i);
-        mark((u8)(OUTPUT_MODE + (modes & 3) * 3 + i));
+        mode = outputs_mode(b, i);
+        mark((u8)(OUTPUT_MODE + mode * 3 + i));
     }
-    mark((u8)(VIEW_SELECTED + k->view1 - 1));
-    number(k->v, k->places);
+    mark(VIEW_SELECTED + view);
 }
 
 void display_view(struct rcx *b, u8 view)
@@ -230,7 +210,6 @@ void display_mark(struct rcx *b, u8 seg, u8 on)
         *m |= mask;
         if (!on)
             *m ^= mask;
-        b->display.key.view1 = 0; /* not a view: the image is composed again */
     }
 }
 
@@ -240,18 +219,12 @@ RCX_STATIC_ASSERT(refresh_is_the_10ms_step, DISPLAY_REFRESH_MS == 10);
 void display_tick(struct rcx *b)
 {
     struct rcx_display *d = &b->display;
-    struct display_key k;
 
     if (++d->phase >= 6 * DISPLAY_FRAME_STEPS)
         d->phase = 0;
     if (d->ir)
         d->ir--;
-    k.pad = 0;
-    key_of(b, &k);
-    if (same_key(&k, &d->key))
-        return; /* the same image as last time */
-    d->key = k;
-    compose(d, &k);
+    compose(b);
     if (memcmp(work, d->shown, DISPLAY_BYTES)) {
         memcpy(d->shown, work, DISPLAY_BYTES);
         hal_lcd(b, d->shown);

@@ -47,18 +47,6 @@ enum display_view { DISPLAY_WATCH = 0, DISPLAY_INPUT_1, DISPLAY_INPUT_2, DISPLAY
 #define DISPLAY_MARK_DOT3 DISPLAY_SEG(7, 0)
 #define DISPLAY_MARK_DOT4 DISPLAY_SEG(7, 4)
 
-/* What the image shows besides the marks (vm/display.c); view1 = view + 1, 0 when the marks changed (or at
- * power-on): then the image is composed whatever the rest. */
-struct display_key {
-    s16 v;               /* the number and its decimal places */
-    u8 places;
-    u8 view1;
-    u8 prog;
-    u8 lit;              /* figure walking, IR mark, inputs pressed */
-    u8 modes;            /* the outputs' modes on the wire, 2 bits each */
-    u8 pad;
-};
-
 struct rcx_display {
     u8 view;             /* enum display_view */
     u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
@@ -69,7 +57,10 @@ struct rcx_display {
     u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
-    struct display_key key;  /* what it was composed from */
+    u8 digits[DISPLAY_BYTES]; /* the segments of the digits (vm/display.c), worked out from: */
+    s16 digits_v;        /* the number, */
+    u8 digits_places1;   /* its decimal places + 1 (0 at power-on: nothing worked out yet) */
+    u8 digits_prog1;     /* and the program number shown */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */

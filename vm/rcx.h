@@ -113,10 +113,6 @@ void vm_init(struct rcx *b, u16 arena_addr);
 
 /* One millisecond has passed. */
 void vm_tick(struct rcx *b);
-/* The ticks from now that would only count time, at most 8 (vm/vm.c); vm_advance(b, n) for n <= vm_quiet_ms(b)
- * is the same as n vm_tick(b). For a port that would rather not wake up for them. */
-u8 vm_quiet_ms(const struct rcx *b);
-void vm_advance(struct rcx *b, u8 ms);
 #define vm_pausing(b) ((b)->out.pause[0] || (b)->out.pause[1] || (b)->out.pause[2]) /* outputs_tick has work */
 #define vm_sounding(b) ((b)->sound.count || (b)->sound.left)                        /* sound_tick has work */
 

@@ -64,25 +64,3 @@ void vm_tick(struct rcx *b)
     for (i = 0; i < RCX_TIMERS; i++)
         b->timer[i] = (u16)((b->timer[i] + 1) & 0x7FFF); /* 0-32767, then 0 again (spec p. 6) */
 }
-
-/*
- * Ticks from now that would only count (rcx.ms 1-8: no 10 ms step, no display refresh; no new minute of the watch;
- * no pause, no note), and so may be handed over together to vm_advance(). 0 when the next one does more.
- */
-u8 vm_quiet_ms(const struct rcx *b)
-{
-    u8 n;
-
-    if (!b->ms || vm_pausing(b) || vm_sounding(b))
-        return 0;
-    n = (u8)(9 - b->ms);
-    if (b->watch_ms > 59999u - n)
-        n = (u8)(59999u - b->watch_ms);
-    return n;
-}
-
-void vm_advance(struct rcx *b, u8 ms)
-{
-    b->ms = (u8)(b->ms + ms);
-    b->watch_ms += ms;
-}

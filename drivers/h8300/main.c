@@ -63,7 +63,7 @@ void drv_tick_start(u8 irq)
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
-void drv_wait_ms(u8 ms)
+RCX_HIGH_CODE void drv_wait_ms(u8 ms)
 {
     while (ms) {
         if (FRT_TCSR & FRT_TCSR_OCFA) {
@@ -87,7 +87,7 @@ static inline u16 ad_raw10(u16 addr)
  * The scans stored since the last call, oldest first, as one sample per input per millisecond. A scan the
  * interrupt did not store (see irq.s) was one the runtime said would change nothing (rt_sensors_at_rest).
  */
-static __attribute__((noinline)) void feed_samples(void)
+static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
@@ -149,7 +149,7 @@ static __attribute__((noinline)) void millisecond(void)
 
 int main(void)
 {
-    u8 seen, i, quiet = 0, skipped = 0, rested = 0;
+    u8 seen, i;
 
     /* No code: the arena's size as an absolute symbol, for drivers/size.sh and the free-memory check. */
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
@@ -167,44 +167,14 @@ int main(void)
     seen = drv_ms_ticks;
     h8_irq_enable();
 
-    /*
-     * Mostly nothing happens: then the runtime says for how many milliseconds (rt_quiet_ms) its ticks would only
-     * count and rt_run would find nothing to do, and those milliseconds cost no more than a look at the IR receiver,
-     * the scans and the buttons; they are handed over together (rt_advance) before the runtime next runs.
-     */
     for (;;) {
-        while (quiet) {
-            if (seen == drv_ms_ticks)
-                h8_sleep(); /* until the next interrupt, at most 1 ms away */
-            if (sci_waiting() || drv_sci_mode)
-                break;
-            if (seen == drv_ms_ticks)
-                continue;
-            if (drv_ad_seen != drv_ad_done || BUTTON_PINS() != button_pins || buttons.cand)
-                break; /* for the runtime to take */
-            if (!(u8)(++seen & BATTERY_EVERY))
-                battery_sample();
-            skipped++;
-            if (!--quiet)
-                rested = 1; /* the next tick is the runtime's */
-        }
-        quiet = 0;
-        if (skipped) {
-            rt_advance(&brick, skipped);
-            skipped = 0;
-        }
-        if (sci_waiting()) {
-            rested = 0;
+        if (sci_waiting())
             sci_drain(&brick);
-        }
-        if (drv_sci_mode) {
-            rested = 0;
+        if (drv_sci_mode)
             sci_service();
-        }
         if ((u8)(drv_ms_ticks - seen) > TICKS_BACKLOG)
             seen = (u8)(drv_ms_ticks - TICKS_PER_PASS);
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
-            rested = 0;
             if (!(u8)(++seen & BATTERY_EVERY))
                 battery_sample();
             millisecond();
@@ -213,14 +183,8 @@ int main(void)
         brick.vm.yield = 0;
         if (seen != drv_ms_ticks)
             continue;
-        /* After a quiet stretch, nothing for rt_run until the next tick or byte. */
-        if (!rested) {
-            if (rt_run(&brick, RUN_BUDGET))
-                continue;
-            quiet = rt_quiet_ms(&brick);
-        }
         /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. */
-        if (!quiet && seen == drv_ms_ticks)
+        if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks)
             h8_sleep();
     }
 }

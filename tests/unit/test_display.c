@@ -467,9 +467,9 @@ static void bad_operands_change_nothing(void **state)
 }
 
 /*
- * The image is composed again only when what it shows may have changed (vm/display.c): a brick doing random things
- * must show, millisecond by millisecond, what one that composes its image at every refresh shows (the record of what
- * it was composed from is wiped every millisecond: rcx_display.key, display.h).
+ * The digits are worked out again only when what they show may have changed (vm/display.c): a brick doing random
+ * things must show, millisecond by millisecond, what one that works them out at every refresh shows (the record of
+ * what they were worked out from is wiped every millisecond: rcx_display.digits_places1, display.h).
  */
 static void image_follows_every_change(void **state)
 {
@@ -509,7 +509,7 @@ static void image_follows_every_change(void **state)
             if (r % 4 == 0)
                 sensor_sample(b, (u8)(r >> 2 & 3), (u16)(seed >> 16 & 0x3FF));
             if (i == 1)
-                b->display.key.view1 = 0; /* what the image was composed from, forgotten: composed anew */
+                b->display.digits_places1 = 0; /* what the digits were worked out from, forgotten */
             vm_run(b, 4);
             vm_tick(b);
         }
