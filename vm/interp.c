@@ -58,7 +58,12 @@ enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_A
  * returns from its subroutine. An instruction that runs past the end of the code, or a jump that lands outside it,
  * stops the task.
  */
-static __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
+#ifdef __H8300__
+void run_slow(struct rcx *b, u8 n, const u16 *at); /* called by drivers/h8300/runfast.S */
+#else
+static
+#endif
+__attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
 {
     struct rcx_task *t = &b->task[n];
     u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
@@ -200,6 +205,41 @@ stop:
     sched_stop_task(b, n);
 }
 
+#ifdef __H8300__
+/*
+ * On the brick the loop over the running tasks is drivers/h8300/runfast.S: it runs their byte codes of the
+ * commonest kinds itself, in turn or a lone task's many in a row, any other through run_slow(), and returns the
+ * count left once it has run `count`, or nothing runs any more, or yield is set (looked at after each round and
+ * each call of run_slow()), leaving b->rr as the loop below does. It does what the loop below does
+ * (tests/drivers/test_h8tasks.c compares the two).
+ */
+#include "runfast.h"
+u8 rcx_run_fast(struct rcx *b, u8 count);
+RCX_STATIC_ASSERT(rf_prog, offsetof(struct rcx, prog) == RF_PROG && offsetof(struct rcx, rr) == RF_RR);
+RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offsetof(struct rcx, yield) == RF_YIELD);
+RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
+RCX_STATIC_ASSERT(rf_arena, offsetof(struct rcx, arena) == RF_ARENA && offsetof(struct rcx, obj_start) == 0);
+RCX_STATIC_ASSERT(rf_task, sizeof(struct rcx_task) == RF_TASK_SIZE && offsetof(struct rcx_task, sub) == RF_SUB
+                           && offsetof(struct rcx_task, pc) == RF_PC && offsetof(struct rcx_task, local) == RF_LOCAL);
+RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX_SLOT_OBJS == RF_SLOT_OBJS
+                             && RCX_NO_SUB == RF_NO_SUB && RCX_GLOBALS == RF_GLOBALS && RCX_LOCALS == RF_LOCALS);
+RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR
+                            && RCX_OP_SUM_VAR == RF_OP_SUM_VAR && RCX_OP_SUB_VAR == RF_OP_SUB_VAR
+                            && RCX_OP_SJUMP == RF_OP_SJUMP && RCX_SRC_VAR == RF_SRC_VAR
+                            && RCX_SRC_CONST == RF_SRC_CONST);
+
+u16 vm_run(struct rcx *b, u16 budget)
+{
+    u16 left = budget;
+    u8 count;
+
+    while (left && b->runmask && !b->yield) {
+        count = left > RCX_RUN_CHUNK ? RCX_RUN_CHUNK : (u8)left; /* then a look at yield */
+        left = (u16)(left - count + rcx_run_fast(b, count));
+    }
+    return (u16)(budget - left);
+}
+#else
 /*
  * Run up to `count` byte codes of task n: the commonest kinds in a loop that calls nothing and keeps the position in
  * a register, any other (or an irregular case of these: a truncated instruction, a jump leaving the code) through
@@ -320,3 +360,4 @@ u16 vm_run(struct rcx *b, u16 budget)
     b->rr = n;
     return (u16)(budget - left);
 }
+#endif
