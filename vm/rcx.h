@@ -68,8 +68,8 @@ struct rcx {
     u8 prog;        /* selected program slot, source 8 */
     u8 rr;          /* next task the round-robin scheduler visits */
     u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
-    u8 waiting;     /* set when a task starts a Wait, cleared once none waits: 0 means none does */
     volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
+    u8 waiting;     /* set when a task starts a Wait, cleared once none waits: 0 means none does */
     s16 global[RCX_GLOBALS];
     struct rcx_task task[RCX_TASKS];
 
