@@ -11,33 +11,23 @@ const u8 hw_sensor_power_bit[3] = { 0x04, 0x02, 0x01 };
 void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
 {
     static const u8 weight[3] = { 64, 4, 1 }; /* A in bits 7-6, B in 3-2, C in 1-0 */
-    u8 *out;
+    u8 *latch = m->latch, bits, keep, pattern, n = 8;
 
     if (port > 2)
         return;
     if (level > 7)
         level = 7;
-    out = m->out[port];
     mode &= 3;
-    out[0] = (u8)(mode * weight[port]); /* a byte multiply is one instruction, a shift by a variable a loop */
-    /* A brake shorts the motor: holding is all it does, so it is never pulsed. */
-    out[1] = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
-}
-
-/* One phase for all outputs, so that a new level takes over at the next millisecond without restarting a frame. */
-u8 hw_motor_step(struct hw_motors *m)
-{
-    u8 phase = m->phase ? m->phase : 1, latch = 0;
-
-    /* Unrolled: this runs in the tick interrupt. */
-    if (m->out[0][1] & phase)
-        latch = m->out[0][0];
-    if (m->out[1][1] & phase)
-        latch |= m->out[1][0];
-    if (m->out[2][1] & phase)
-        latch |= m->out[2][0];
-    m->phase = (u8)(phase << 1);
-    return latch;
+    bits = (u8)(mode * weight[port]); /* a byte multiply is one instruction, a shift by a variable a loop */
+    keep = (u8)~(3 * weight[port]);
+    /* A brake shorts the motor: holding is all it does, so it is never pulsed. One phase for all outputs, so that a
+     * new level takes over at the next millisecond without restarting a frame. */
+    pattern = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
+    do {
+        *latch = (u8)((*latch & keep) | (pattern & 1 ? bits : 0));
+        latch++;
+        pattern >>= 1;
+    } while (--n);
 }
 
 /*

@@ -11,12 +11,19 @@
 /* Motors (§3.2). One latch byte for all three outputs, two bits each; speed is an 8 ms on/off pattern per level. */
 extern const u8 hw_pwm_pattern[8];
 struct hw_motors {
-    u8 out[3][2];   /* per output: its direction bits, already in their latch position, and its pattern (bit n
-                     * set: on in millisecond n of the 8) */
-    u8 phase;       /* one bit, the millisecond of the 8 that comes next; 0 before the first step */
+    u8 latch[8];    /* the latch byte of each millisecond of the 8, all outputs together: a setting is worked out
+                     * here once, so that the tick interrupt only has to look its byte up */
+    u8 phase;       /* the millisecond of the 8 that comes next (0-7) */
 };
 void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level);
-u8 hw_motor_step(struct hw_motors *m); /* the latch byte for the next millisecond */
+/* The latch byte for the next millisecond: what the tick interrupt does (drivers/h8300/irq.s), for the host. */
+static inline u8 hw_motor_step(struct hw_motors *m)
+{
+    u8 latch = m->latch[m->phase & 7];
+
+    m->phase = (u8)((m->phase + 1) & 7);
+    return latch;
+}
 
 /* A/D (§3.3, §3.4). Inputs are numbered 0-2 as in hal.h (brick inputs 1-3) and wired in reverse. */
 #define HW_AD_BATTERY 3                                /* AN3 */

@@ -15,15 +15,6 @@
 RCX_STATIC_ASSERT(packet_length_fits_a_byte, IR_RX_MAX <= 255);
 RCX_STATIC_ASSERT(chunk_fits_rx, IR_CHUNK <= IR_RX_MAX);
 
-enum {
-    IR_RX_IDLE = 0,  /* looking for a header or an opcode */
-    IR_RX_OPCODE,    /* a header ended (its 00): the next byte is the opcode, even FF (F7 toggled) */
-    IR_RX_VALUE,     /* next byte is a value */
-    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value */
-    IR_RX_READY,     /* a good packet waits for ir_poll(); this and the next ignore what arrives */
-    IR_RX_DRAIN      /* oversized: ignore everything until IR_QUIET_MS of silence */
-};
-
 static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
 void ir_init(struct rcx_brick *k)

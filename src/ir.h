@@ -30,7 +30,8 @@ struct rcx_ir {
     u8 rx_state;        /* IR_RX_* in ir.c */
     u8 rx_value;        /* value byte waiting for its complement */
     u8 rx_sum;
-    u8 quiet;           /* milliseconds since another device's last byte (up to 255) */
+    u8 quiet;           /* milliseconds since another device's last byte (up to 255; counted while below
+                           IR_QUIET_MS at least, see ir_tick_due) */
     u8 rx_len;          /* payload bytes accepted */
     u8 rx_need;         /* payload bytes of this packet, once the opcode (and a 0x45 length) told */
     u8 rx[IR_RX_MAX];   /* also the transmitter's chunk: nothing is received while the brick transmits */
@@ -54,6 +55,16 @@ struct rcx_ir {
     u8 range;           /* range last given to hal_ir_range() */
 };
 
+/* rcx_ir.rx_state (src/ir.c). */
+enum {
+    IR_RX_IDLE = 0,  /* looking for a header or an opcode */
+    IR_RX_OPCODE,    /* a header ended (its 00): the next byte is the opcode, even FF (F7 toggled) */
+    IR_RX_VALUE,     /* next byte is a value */
+    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value */
+    IR_RX_READY,     /* a good packet waits for ir_poll(); this and the next ignore what arrives */
+    IR_RX_DRAIN      /* oversized: ignore everything until IR_QUIET_MS of silence */
+};
+
 /* Framing bits, as PackConf (source 33 byte 16, spec p. 9) names them. */
 #define IR_PACK_PREAMBLE 0x01   /* 55 FF 00 */
 #define IR_PACK_COMPLEMENT 0x02 /* every byte followed by its complement, checksum included */
@@ -64,6 +75,13 @@ void ir_init(struct rcx_brick *k);
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
+/* Whether the call can change anything: nearly every millisecond it cannot, and these are cheaper than the calls.
+ * At rest (nobody heard for IR_QUIET_MS, no echo outstanding or being timed) the receiver is back to looking for a
+ * packet, and counting `quiet` further changes nothing: it is only compared with IR_QUIET_MS and smaller times.
+ * With nothing being sent, no packet to answer, no request and the range as it was, there is nothing to poll for. */
+#define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
+#define ir_poll_due(k) ((k)->ir.tx_pos < (k)->ir.tx_total || (k)->ir.rx_state == IR_RX_READY || \
+                        (k)->vm.remote.tx_len || (k)->ir.range != (k)->vm.tx_range)
 u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */
 
 #endif

@@ -15,13 +15,15 @@ void rt_init(struct rcx_brick *k, u16 arena_addr)
 void rt_tick(struct rcx_brick *k)
 {
     vm_tick(&k->vm);
-    ir_tick(k);
+    if (ir_tick_due(k))
+        ir_tick(k);
     ui_tick(k);
 }
 
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
-    ir_poll(k);
+    if (ir_poll_due(k))
+        ir_poll(k);
     /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a
      * downloader sends the next command the moment it has the reply. */
     if (k->vm.boot_mode && ir_idle(k)) {
@@ -29,7 +31,7 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
         hal_enter_rom(&k->vm);
         return 0;
     }
-    if (k->ui.off)
+    if (k->ui.off || k->vm.turn_off)
         ui_poll(k);            /* a switch-off to carry out */
     return k->vm.runmask ? vm_run(&k->vm, budget) : 0; /* no call when no task runs */
 }
@@ -44,6 +46,7 @@ void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)
 void rt_battery(struct rcx_brick *k, u16 millivolts)
 {
     k->vm.battery_mv = millivolts;
+    ui_battery(k);
 }
 
 void rt_button(struct rcx_brick *k, u8 button, u8 down)

@@ -35,6 +35,11 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 
 /* A 10-bit A/D sample of input 0-2, every 1 ms; the battery in millivolts whenever measured. */
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
+/* After samples of all inputs: nonzero when another scan equal to them would change nothing, which
+ * rt_sensors_resting then tells until that may no longer be so (vm/sensors.h, sensors_at_rest). A port may skip
+ * such scans. */
+#define rt_sensors_at_rest(k) sensors_at_rest(&(k)->vm)
+#define rt_sensors_resting(k) ((k)->vm.sensors_rest)
 void rt_battery(struct rcx_brick *k, u16 millivolts);
 
 /* A debounced button edge. */

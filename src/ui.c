@@ -67,10 +67,14 @@ void ui_tick(struct rcx_brick *k)
         if (b->power_down_min && ++ui->idle_min >= b->power_down_min)
             ui->off = UI_OFF_ASKED;
     }
-    if (b->turn_off) {
-        b->turn_off = 0; /* the machine only sets it when a power-down time is set */
-        ui->off = UI_OFF_ASKED;
-    }
+}
+
+/* A new battery reading (every 64 ms on the brick). */
+void ui_battery(struct rcx_brick *k)
+{
+    struct rcx *b = &k->vm;
+    struct rcx_ui *ui = &k->ui;
+
     if (ui->battery_low ? b->battery_mv > UI_BATTERY_OK_MV : b->battery_mv < UI_BATTERY_LOW_MV) {
         ui->battery_low ^= 1;
         display_mark(b, DISPLAY_MARK_BATTERY, ui->battery_low);
@@ -86,8 +90,13 @@ void ui_tick(struct rcx_brick *k)
 void ui_poll(struct rcx_brick *k)
 {
     struct rcx *b = &k->vm;
-    u8 off = k->ui.off;
+    u8 off;
 
+    if (b->turn_off) {
+        b->turn_off = 0; /* the machine only sets it when a power-down time is set */
+        k->ui.off = UI_OFF_ASKED;
+    }
+    off = k->ui.off;
     /* A PBTurnOff from the host is acknowledged first: the reply and its echo have to be through. */
     if (!off || !ir_idle(k))
         return;

@@ -25,6 +25,8 @@ struct rcx_ui {
 void ui_init(struct rcx_brick *k);
 void ui_button(struct rcx_brick *k, u8 button, u8 down);
 void ui_tick(struct rcx_brick *k);
-void ui_poll(struct rcx_brick *k); /* act on the machine's power requests: turn off, and standby on the brick */
+void ui_battery(struct rcx_brick *k); /* rcx.battery_mv was measured again: the low-battery mark */
+void ui_poll(struct rcx_brick *k); /* act on the machine's power requests (PBTurnOff, switching off), standby on
+                                      the brick; the runtime calls it while rcx_ui.off or rcx.turn_off is set */
 
 #endif

@@ -125,30 +125,18 @@ u8 program_running(const struct rcx *b)
     return any;
 }
 
+/*
+ * The digits (program number and the view's number) are worked out again only when what they show changed: they
+ * cost far more than the rest, which is composed at every refresh.
+ */
 static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
-    const struct rcx_display *d = &b->display;
+    struct rcx_display *d = &b->display;
     u8 i, mode, view, places;
     s16 v;
 
-    memcpy(work, d->marks, DISPLAY_BYTES);
-    digit(0, (u8)(b->prog + 1));
-    /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
-    if ((u8)(d->phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
-        work[0] |= FIGURE_WALKING;
-    else
-        work[0] |= FIGURE_STANDING;
-    if (d->ir)
-        lit(DISPLAY_MARK_IR_LOW);
-    for (i = 0; i < RCX_SENSORS; i++) {
-        if (b->sensor[i].boolean)
-            mark(INPUT_PRESSED + i);
-        mode = outputs_mode(b, i);
-        mark((u8)(OUTPUT_MODE + mode * 3 + i));
-    }
     view = d->view;
-    mark(VIEW_SELECTED + view);
     /* `places` is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
@@ -167,7 +155,32 @@ static void compose(struct rcx *b)
         v = d->user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, d->user_source, d->user_index);
         places = d->user_precision;
     }
-    number(v, places);
+    i = (u8)(b->prog + 1);
+    if (v != d->digits_v || (u8)(places + 1) != d->digits_places1 || i != d->digits_prog1) {
+        memset(work, 0, DISPLAY_BYTES);
+        d->digits_v = v;
+        d->digits_places1 = (u8)(places + 1);
+        d->digits_prog1 = i;
+        digit(0, i);
+        number(v, places);
+        memcpy(d->digits, work, DISPLAY_BYTES);
+    }
+    for (i = 0; i < DISPLAY_BYTES; i++)
+        work[i] = (u8)(d->marks[i] | d->digits[i]);
+    /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
+    if ((u8)(d->phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
+        work[0] |= FIGURE_WALKING;
+    else
+        work[0] |= FIGURE_STANDING;
+    if (d->ir)
+        lit(DISPLAY_MARK_IR_LOW);
+    for (i = 0; i < RCX_SENSORS; i++) {
+        if (b->sensor[i].boolean)
+            mark(INPUT_PRESSED + i);
+        mode = outputs_mode(b, i);
+        mark((u8)(OUTPUT_MODE + mode * 3 + i));
+    }
+    mark(VIEW_SELECTED + view);
 }
 
 void display_view(struct rcx *b, u8 view)
@@ -202,13 +215,11 @@ void display_mark(struct rcx *b, u8 seg, u8 on)
 
 RCX_STATIC_ASSERT(refresh_is_the_10ms_step, DISPLAY_REFRESH_MS == 10);
 
-/* Once per 10 ms step of the machine's clock (rcx.ms is 0 at its first millisecond). */
+/* Once per 10 ms step of the machine's clock, at its first millisecond (vm_tick). */
 void display_tick(struct rcx *b)
 {
     struct rcx_display *d = &b->display;
 
-    if (b->ms)
-        return;
     if (++d->phase >= 6 * DISPLAY_FRAME_STEPS)
         d->phase = 0;
     if (d->ir)

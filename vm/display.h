@@ -57,12 +57,16 @@ struct rcx_display {
     u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
+    u8 digits[DISPLAY_BYTES]; /* the segments of the digits (vm/display.c), worked out from: */
+    s16 digits_v;        /* the number, */
+    u8 digits_places1;   /* its decimal places + 1 (0 at power-on: nothing worked out yet) */
+    u8 digits_prog1;     /* and the program number shown */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
 void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
-void display_tick(struct rcx *b);                                   /* every 1 ms */
+void display_tick(struct rcx *b);                                   /* every 10 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
  * talking. A field store, not a call: it is made in the IR layer's busiest paths. */
 #define display_ir_activity(b) ((b)->display.ir = DISPLAY_IR_STEPS)

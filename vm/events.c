@@ -92,6 +92,7 @@ static struct rcx_sensor *watch(struct rcx *b, u8 k, u8 d)
         s += k - KEY(0);
         s->number = (u8)(k - KEY(0));
         s->watched = (u8)(s->watched + d);
+        b->sensors_rest = 0;
     }
     return s;
 }
@@ -347,10 +348,11 @@ void events_input(struct rcx *b, u8 n)
 
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
  * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
- * durations use, right after each 100 ms timer step. */
+ * durations use, right after each 100 ms timer step (vm_tick calls this at the first millisecond of each 10 ms
+ * step). */
 void events_tick(struct rcx *b)
 {
-    if (b->ms == 0 && b->sensor[0].others)
+    if (b->sensor[0].others)
         evaluate_set(b, b->sensor[0].others, ANY);
 }
 

@@ -85,7 +85,7 @@ void events_raise(struct rcx *b, u16 mask);                           /* DirectE
 void events_counter_changed(struct rcx *b, u8 n);
 void events_message_changed(struct rcx *b);
 void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
-void events_tick(struct rcx *b);             /* every 1 ms */
+void events_tick(struct rcx *b);             /* every 10 ms (vm_tick) */
 
 /* Monitoring and access control; `target` is the handler's pc in the task's current code object. The inputs without
  * operands are one call of the state machine (vm/access.h), made in place. */

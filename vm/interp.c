@@ -179,6 +179,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */
         t->wake = (u16)(b->ticks10 + (u16)value);
         t->state = RCX_TASK_WAITING;
+        b->waiting = 1;
         b->runmask &= (u16)~(1u << n);
         break;
     case C_EXIT_EVENT:

@@ -69,6 +69,7 @@ struct rcx {
     u8 rr;          /* next task the round-robin scheduler visits */
     u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
     volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
+    u8 waiting;     /* set when a task starts a Wait, cleared once none waits: 0 means none does */
     s16 global[RCX_GLOBALS];
     struct rcx_task task[RCX_TASKS];
 
@@ -86,6 +87,7 @@ struct rcx {
     u8 message;     /* source 15 */
 
     struct rcx_sensor sensor[RCX_SENSORS];
+    u8 sensors_rest;   /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */
     struct rcx_event event[RCX_EVENTS];
     struct rcx_outputs out;
     struct rcx_sound sound;
@@ -111,6 +113,8 @@ void vm_init(struct rcx *b, u16 arena_addr);
 
 /* One millisecond has passed. */
 void vm_tick(struct rcx *b);
+#define vm_pausing(b) ((b)->out.pause[0] || (b)->out.pause[1] || (b)->out.pause[2]) /* outputs_tick has work */
+#define vm_sounding(b) ((b)->sound.count || (b)->sound.left)                        /* sound_tick has work */
 
 /* Execute up to `budget` byte codes, one per running task in turn; returns how many were executed (a task reaching
  * the end of its code counts as one). Returns early once `yield` is set: it is checked at least every

@@ -91,6 +91,7 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     s = &b->sensor[n];
     s->value = 0;
     s->quiet = SENSOR_MOVING;
+    b->sensors_rest = 0;
     return s;
 }
 
@@ -230,4 +231,20 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
         sample(b, s, raw);
     else if (s->watched)
         events_input(b, s->number);
+}
+
+u8 sensors_at_rest(struct rcx *b)
+{
+    const struct rcx_sensor *s = b->sensor;
+    u8 n = RCX_SENSORS, rest = 0;
+
+    do {
+        if (s->quiet == SENSOR_MOVING || s->watched)
+            goto moving;
+        s++;
+    } while (--n);
+    rest = 1;
+moving:
+    b->sensors_rest = rest;
+    return rest;
 }

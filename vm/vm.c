@@ -18,14 +18,19 @@ void vm_init(struct rcx *b, u16 arena_addr)
 
 static void wake_waiting(struct rcx *b)
 {
-    u8 n;
+    u8 n, still = 0;
     for (n = 0; n < RCX_TASKS; n++) {
         struct rcx_task *t = &b->task[n];
-        if (t->state == RCX_TASK_WAITING && (s16)(u16)(b->ticks10 - t->wake) >= 0) {
-            t->state = RCX_TASK_RUNNING;
-            b->runmask |= (u16)(1u << n);
+        if (t->state == RCX_TASK_WAITING) {
+            if ((s16)(u16)(b->ticks10 - t->wake) >= 0) {
+                t->state = RCX_TASK_RUNNING;
+                b->runmask |= (u16)(1u << n);
+            } else {
+                still = 1;
+            }
         }
     }
+    b->waiting = still;
 }
 
 void vm_tick(struct rcx *b)
@@ -34,12 +39,14 @@ void vm_tick(struct rcx *b)
 
     /* Engines with nothing in progress are not called: each would only find that out. No reversing pause; no note
      * and none queued (a sound is only ever started with a note's length, so none is sounding either). */
-    if (b->out.pause[0] || b->out.pause[1] || b->out.pause[2])
+    if (vm_pausing(b))
         outputs_tick(b);
-    if (b->sound.count || b->sound.left)
+    if (vm_sounding(b))
         sound_tick(b);
-    display_tick(b);
-    events_tick(b);
+    if (!b->ms) { /* the first millisecond of a 10 ms step: checked here, where it costs no call */
+        display_tick(b);
+        events_tick(b);
+    }
     if (++b->watch_ms >= 60000u) {
         b->watch_ms = 0;
         if (++b->watch >= 24 * 60)
@@ -49,7 +56,8 @@ void vm_tick(struct rcx *b)
         return;
     b->ms = 0;
     b->ticks10++;
-    wake_waiting(b);
+    if (b->waiting)
+        wake_waiting(b);
     if (++b->step10 < 10)
         return;
     b->step10 = 0;

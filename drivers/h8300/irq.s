@@ -11,13 +11,110 @@
 	.global	_rcx_timer_irq
 	.global	_rcx_sci_irq
 
-_rcx_timer_irq:				; FRT compare match A (FDA2, the 1 ms tick), A/D end (FDBC)
+; The FRT compare match A (FDA2, the 1 ms tick) and the end of an A/D scan (FDBC) share this handler, written
+; here because it runs a thousand times a second whatever the brick is doing. Each entry serves one of the two,
+; and the CPU comes back at once for the other if it is pending too.
+;
+; Every millisecond the motor latch takes the next byte of the pattern hal_motor worked out (drv_motors, hw.h),
+; and the A/D scans AN0-AN3 afresh (66 us). With an active sensor (light, rotation) its power is off for the
+; scan, and the A/D interrupt takes the results and powers it again. With passive inputs only, no interrupt is
+; needed: the scan started a millisecond ago is read here. The inputs' results go to the next slot of
+; drv_ad_slot for the main loop (main.c: it must never run the runtime inside an interrupt), which reads the
+; battery's from ADDRD itself. A scan equal to the last one is not stored when the main loop has fed everything and the runtime
+; said that such a scan changes nothing (rcx.sensors_rest, vm/sensors.h): nearly always, on an idle brick.
+_rcx_timer_irq:
 	mov.w	r0,@-r7
 	mov.w	r1,@-r7
 	mov.w	r2,@-r7
 	mov.w	r3,@-r7
-	jsr	@_rcx_timer_isr
-	bra	_rcx_irq_return
+	mov.b	@0xe8:8,r0l		; ADCSR
+	mov.b	@_drv_sensor_power:8,r0h
+	mov.b	r0l,r1l
+	and.b	#0xc0,r1l		; ADF and ADIE both set: the scan with active sensors ended
+	cmp.b	#0xc0,r1l
+	bne	.Ltick
+	sub.b	r0l,r0l			; r0l 0: then power them again
+	mov.b	r0l,@0xe8:8		; ADCSR 0: ADF (read as 1 above) cleared, no restart before the tick
+	bra	.Lscan
+.Ltick:
+	bclr	#3,@0x91:8		; TCSR.OCFA, read as 1: acknowledged
+	mov.b	@_drv_ms_ticks:8,r1l
+	inc	r1l
+	mov.b	r1l,@_drv_ms_ticks:8
+	mov.b	#1,r1l
+	mov.b	r1l,@_drv_yield:16	; rcx.yield: vm_run returns at its next check
+	sub.b	r1h,r1h
+	mov.b	@_drv_motors+8:16,r1l	; drv_motors.phase, 0-7
+	mov.b	@(_drv_motors,r1),r2l
+	mov.b	r2l,@0x80:8		; the motor latch
+	inc	r1l
+	and.b	#7,r1l
+	mov.b	r1l,@_drv_motors+8:16
+	mov.b	@0xbb:8,r1l		; P6DR: sensors unpowered for the scan, and so they stay if no longer wanted
+	and.b	#0xf8,r1l
+	mov.b	r1l,@0xbb:8
+	mov.b	r0h,r0h
+	bne	.Lrestart		; active sensors: their scan was taken by the A/D interrupt
+	btst	#7,r0l			; ADF: the scan started a millisecond ago is complete
+	beq	.Lrestart
+	mov.b	#1,r0l			; r0l 1: then start the next scan
+.Lscan:
+	sub.b	r1h,r1h
+	mov.b	@_drv_ad_done:8,r1l
+	mov.b	@_drv_ad_seen:8,r2l
+	cmp.b	r1l,r2l
+	bne	.Lstore			; the main loop has scans to feed yet
+	mov.b	@_drv_sensors_rest:16,r2l
+	beq	.Lstore
+	add.b	#0xf8,r1l		; the slot before: - DRV_AD_SLOT
+	and.b	#0x1f,r1l		; DRV_AD_SLOTS * DRV_AD_SLOT - 1
+	mov.w	@0xffe0:16,r2
+	mov.w	@(_drv_ad_slot,r1),r3
+	cmp.w	r2,r3
+	bne	.Lstore
+	mov.w	@0xffe2:16,r2
+	mov.w	@(_drv_ad_slot+2,r1),r3
+	cmp.w	r2,r3
+	bne	.Lstore
+	mov.w	@0xffe4:16,r2
+	mov.w	@(_drv_ad_slot+4,r1),r3
+	cmp.w	r2,r3
+	beq	.Lstored		; the same as the scan before
+.Lstore:				; ADDRA-ADDRC into slot drv_ad_done / 8 of drv_ad_slot
+	mov.b	@_drv_ad_done:8,r1l
+	and.b	#0x1f,r1l
+	mov.w	@0xffe0:16,r2
+	mov.w	r2,@(_drv_ad_slot,r1)
+	mov.w	@0xffe2:16,r2
+	mov.w	r2,@(_drv_ad_slot+2,r1)
+	mov.w	@0xffe4:16,r2
+	mov.w	r2,@(_drv_ad_slot+4,r1)
+	mov.b	@_drv_ad_done:8,r1l
+	add.b	#8,r1l			; DRV_AD_SLOT
+	mov.b	r1l,@_drv_ad_done:8
+.Lstored:
+	mov.b	r0l,r0l
+	bne	.Lrestart
+	mov.b	@0xbb:8,r1l		; the scan is over: active sensors powered again
+	or.b	r0h,r1l
+	mov.b	r1l,@0xbb:8
+	bra	.Lreturn
+.Lrestart:
+	mov.b	@0xe8:8,r1l		; ADF, when set, read as 1 ...
+	sub.b	r1l,r1l
+	mov.b	r1l,@0xe8:8		; ... and written 0
+	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3
+	mov.b	r0h,r0h
+	beq	.Lstart
+	mov.b	#0x73,r1l		; and ADIE: the interrupt at the end, to power the active sensors again
+.Lstart:
+	mov.b	r1l,@0xe8:8
+.Lreturn:
+	mov.w	@r7+,r3
+	mov.w	@r7+,r2
+	mov.w	@r7+,r1
+	mov.w	@r7+,r0
+	rts
 
 _rcx_sci_irq:				; SCI receive error, byte received, TDR empty, sent (FDB4-FDBA)
 	mov.w	r0,@-r7

@@ -12,7 +12,7 @@
 #define RF_YIELD 0xC8      /* yield (u8) */
 #define RF_GLOBAL 0xCA     /* global[] */
 #define RF_TASK 0x10A      /* task[] */
-#define RF_ARENA 0x5AA     /* arena[]; obj_start[] is at 0 */
+#define RF_ARENA 0x5BA     /* arena[]; obj_start[] is at 0 */
 #define RF_TASK_SIZE 60    /* sizeof(struct rcx_task) */
 #define RF_SUB 1           /* struct rcx_task: sub (u8) */
 #define RF_PC 2            /* pc (u16) */

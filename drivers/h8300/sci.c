@@ -12,10 +12,10 @@
 #define TX_SIZE 64 /* a power of two: a whole short reply; longer ones wait in hal_ir_send for room */
 
 /* On-chip: the interrupts come 240 times a second; the indexes in the page of 8-bit addresses. */
-static struct hw_rx rx RCX_ONCHIP;
+struct hw_rx drv_rx RCX_ONCHIP;
 static volatile u8 tx_head RCX_EIGHT, tx_tail RCX_EIGHT, tx_active RCX_EIGHT;
 static volatile u8 tx_buf[TX_SIZE] RCX_ONCHIP; /* volatile: filled before the head moves, read by the interrupt */
-static u8 mode_now RCX_EIGHT;
+u8 drv_sci_mode RCX_EIGHT;
 
 /*
  * All four SCI interrupts. A received byte comes first; a parity, framing or overrun error passes it on marked,
@@ -30,7 +30,7 @@ void rcx_sci_isr(void)
     if ((u8)(ssr << 1) >= 0x10) { /* any of RDRF, ORER, FER and PER: bits 6-3, shifted up to 7-4 */
         t = SCI_RDR;
         SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
-        hw_rx_put(&rx, t, (u8)((ssr & SCI_SSR_ERRORS) != 0));
+        hw_rx_put(&drv_rx, t, (u8)((ssr & SCI_SSR_ERRORS) != 0));
         return;
     }
     if (!(SCI_SCR & SCI_SCR_TIE)) { /* transmission ended */
@@ -74,7 +74,7 @@ void sci_start(u8 mode)
         __asm__ __volatile__("");
     /* TE stays on: TxD then idles high, and the LED dark, while the carrier runs. */
     SCI_SCR = SCI_SCR_TE | SCI_SCR_RE | SCI_SCR_RIE;
-    mode_now = mode;
+    drv_sci_mode = mode;
 }
 
 void sci_stop(void)
@@ -96,7 +96,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
 {
     (void)b;
     mode &= HAL_IR_4800 | HAL_IR_76KHZ | HAL_IR_DUTY25;
-    if (mode != mode_now) {
+    if (mode != drv_sci_mode) {
         while (hal_ir_busy(0))
             ;
         sci_start(mode);
@@ -124,7 +124,7 @@ void hal_ir_range(struct rcx *b, u8 far)
 /* Another mode is for one transmission (a program's serial packet); the host talks at the default settings. */
 void sci_service(void)
 {
-    if (mode_now && !hal_ir_busy(0))
+    if (drv_sci_mode && !hal_ir_busy(0))
         sci_start(0);
 }
 
@@ -133,6 +133,6 @@ void sci_drain(struct rcx_brick *k)
     static u8 byte RCX_EIGHT;
     u8 got;
 
-    while ((got = hw_rx_get(&rx, &byte)) != 0)
+    while ((got = hw_rx_get(&drv_rx, &byte)) != 0)
         rt_ir_byte(k, byte, (u8)(got == 2));
 }

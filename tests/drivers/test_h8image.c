@@ -102,21 +102,19 @@ static void ir_settings_as_compiled(void **state)
     }
 }
 
-/* Random settings and steps on both sides; the state and every latch byte must agree. */
+/* Random settings on both sides: the patterns (every latch byte of the 8 ms) must agree. The tick interrupt steps
+ * through them (timer_interrupt_drives_motors_and_the_scan). */
 static void motor_patterns_as_compiled(void **state)
 {
     struct hw_motors m;
     (void)state;
     memset(&m, 0, sizeof m);
     memset(h.mem + H8_SCRATCH, 0, sizeof m);
-    for (unsigned i = 0; i < 3000; i++) {
-        if (rnd() % 3 == 0) {
-            u8 port = (u8)(rnd() % 4), mode = (u8)rnd(), level = (u8)(rnd() % 10);
-            uint16_t stack[1] = { level };
-            hw_motor_set(&m, port, mode, level);
-            h8_run(&h, "_hw_motor_set", H8_SCRATCH, port, mode, stack, 1);
-        }
-        assert_int_equal((u8)h8_run(&h, "_hw_motor_step", H8_SCRATCH, 0, 0, NULL, 0), hw_motor_step(&m));
+    for (unsigned i = 0; i < 1000; i++) {
+        u8 port = (u8)(rnd() % 4), mode = (u8)rnd(), level = (u8)(rnd() % 10);
+        uint16_t stack[1] = { level };
+        hw_motor_set(&m, port, mode, level);
+        h8_run(&h, "_hw_motor_set", H8_SCRATCH, port, mode, stack, 1);
         assert_memory_equal(h.mem + H8_SCRATCH, &m, sizeof m);
     }
 }
@@ -268,7 +266,7 @@ static void sci_interrupt_receives_bytes_and_errors(void **state)
         { 0x4C, 0x33, 1 }, /* parity error */
         { 0x40, 0x44, 0 },
     };
-    uint16_t rx = var("_rx"); /* struct hw_rx: head, tail, data[32], error[32] */
+    uint16_t rx = var("_drv_rx"); /* struct hw_rx: head, tail, data[32], error[32] */
     (void)state;
     h.mem[SCI_SCR] = 0x70; /* TE, RE, RIE */
     for (unsigned i = 0; i < sizeof got / sizeof got[0]; i++) {
@@ -332,14 +330,14 @@ static void scan_results(uint16_t base)
 /* Slot n of the A/D ring holds the scan of scan_results(base) (the registers in their order). */
 static void assert_slot(unsigned n, uint16_t base)
 {
-    uint16_t slot = (uint16_t)(var("_ad_slot") + 8 * (n & 3));
-    for (unsigned i = 0; i < 4; i++)
+    uint16_t slot = (uint16_t)(var("_drv_ad_slot") + 8 * (n & 3));
+    for (unsigned i = 0; i < 3; i++) /* the inputs: the main loop reads the battery's register itself */
         assert_int_equal(h8_read16(&h, (uint16_t)(slot + 2 * i)), (uint16_t)((base + 100 * i) << 6));
 }
 
 static void timer_interrupt_drives_motors_and_the_scan(void **state)
 {
-    uint16_t ticks = var("_ms_ticks"), done = var("_ad_done"), power = var("_drv_sensor_power");
+    uint16_t ticks = var("_drv_ms_ticks"), done = var("_drv_ad_done"), power = var("_drv_sensor_power");
     uint16_t level[1] = { 7 };
     unsigned step; /* what ad_done counts a stored scan as */
     (void)state;
@@ -350,9 +348,9 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     h.mem[FRT_TCSR] = 0x09; /* OCFA, CCLRA */
     h.mem[AD_ADCSR] = 0xB3; /* ADF, ADST, SCAN, AN0-AN3 */
     h.mem[P6DR] = 0x6F;
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
     assert_int_equal(h.mem[FRT_TCSR], 0x01);
-    assert_int_equal(h8_read16(&h, ticks), 1);
+    assert_int_equal(h.mem[ticks], 1);
     assert_int_equal(h.mem[0xFF80], 0x80); /* the motor latch */
     assert_int_equal(h.mem[P6DR], 0x68);   /* no sensor power */
     step = h.mem[done];
@@ -362,8 +360,8 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
 
     /* No scan finished: nothing stored. */
     h.mem[FRT_TCSR] = 0x09;
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
-    assert_int_equal(h8_read16(&h, ticks), 2);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[ticks], 2);
     assert_int_equal(h.mem[done], step);
     assert_int_equal(h.mem[AD_ADCSR], 0x33);
 
@@ -372,16 +370,16 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     h.mem[P6DR] = 0x6C;
     h.mem[FRT_TCSR] = 0x09;
     h.mem[AD_ADCSR] = 0xB3;
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
-    assert_int_equal(h8_read16(&h, ticks), 3);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[ticks], 3);
     assert_int_equal(h.mem[P6DR], 0x68);
     assert_int_equal(h.mem[done], step); /* the scan of the unpowered millisecond is not used */
     assert_int_equal(h.mem[AD_ADCSR], 0x73); /* and ADIE */
     scan_results(20);
     h.mem[FRT_TCSR] = 0x01;
     h.mem[AD_ADCSR] = 0xF3; /* the scan ended */
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
-    assert_int_equal(h8_read16(&h, ticks), 3);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[ticks], 3);
     assert_int_equal(h.mem[AD_ADCSR], 0x00); /* stopped before it starts over */
     assert_int_equal(h.mem[done], 2 * step);
     assert_slot(1, 20);
@@ -391,14 +389,61 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     scan_results(30);
     h.mem[FRT_TCSR] = 0x09;
     h.mem[AD_ADCSR] = 0xF3;
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
-    assert_int_equal(h8_read16(&h, ticks), 3);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[ticks], 3);
     assert_int_equal(h.mem[done], 3 * step);
     assert_slot(2, 30);
-    h8_run(&h, "_rcx_timer_isr", 0, 0, 0, NULL, 0);
-    assert_int_equal(h8_read16(&h, ticks), 4);
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[ticks], 4);
     assert_int_equal(h.mem[AD_ADCSR], 0x73);
     assert_int_equal(h.mem[P6DR], 0x68);
+}
+
+/* A scan equal to the one before is not stored while the main loop has fed every scan and the runtime says that
+ * such a scan changes nothing (rcx.sensors_rest); any other is. */
+/* A tick whose scan (passive inputs) has completed. */
+static void tick_with_a_scan_done(void)
+{
+    h.mem[FRT_TCSR] = 0x09; /* OCFA, CCLRA */
+    h.mem[AD_ADCSR] = 0xB3; /* ADF, ADST, SCAN, AN0-AN3 */
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+}
+
+static void timer_interrupt_leaves_out_scans_at_rest(void **state)
+{
+    uint16_t done = var("_drv_ad_done"), seen = var("_drv_ad_seen"), rest = var("_drv_sensors_rest");
+    unsigned step;
+    (void)state;
+    h.mem[var("_drv_sensor_power")] = 0;
+    scan_results(10);
+    tick_with_a_scan_done();
+    step = h.mem[done];
+    assert_true(step != 0);
+    assert_slot(0, 10);
+    /* Not fed yet, then not at rest: stored. */
+    h.mem[rest] = 1;
+    tick_with_a_scan_done();
+    assert_int_equal(h.mem[done], 2 * step);
+    h.mem[seen] = h.mem[done];
+    h.mem[rest] = 0;
+    tick_with_a_scan_done();
+    assert_int_equal(h.mem[done], 3 * step);
+    /* Fed, at rest, the same: left out, the scan started all the same. */
+    h.mem[seen] = h.mem[done];
+    h.mem[rest] = 1;
+    tick_with_a_scan_done();
+    assert_int_equal(h.mem[done], 3 * step);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+    /* Any input different: stored. The battery's register alone: left out (the main loop reads it itself). */
+    for (unsigned i = 0; i < 3; i++) {
+        h8_write16(&h, (uint16_t)(0xFFE0 + 2 * i), (uint16_t)((11 + 100 * i) << 6));
+        tick_with_a_scan_done();
+        assert_int_equal(h.mem[done], (4 + i) * step);
+        h.mem[seen] = h.mem[done];
+    }
+    h8_write16(&h, 0xFFE6, 1 << 6);
+    tick_with_a_scan_done();
+    assert_int_equal(h.mem[done], 6 * step);
 }
 
 /* The image as linked, from 0x8000 to its end (openrcx.bin, objcopy's copy of the COFF image): what must run. */
@@ -642,6 +687,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(sci_interrupt_receives_bytes_and_errors, load),
         cmocka_unit_test_setup(sci_interrupt_transmits_then_waits_for_the_end, load),
         cmocka_unit_test_setup(timer_interrupt_drives_motors_and_the_scan, load),
+        cmocka_unit_test_setup(timer_interrupt_leaves_out_scans_at_rest, load),
         cmocka_unit_test(hand_back_leaves_registers_as_after_reset),
     };
     if (argc != 3) {

@@ -466,6 +466,61 @@ static void bad_operands_change_nothing(void **state)
     }
 }
 
+/*
+ * The digits are worked out again only when what they show may have changed (vm/display.c): a brick doing random
+ * things must show, millisecond by millisecond, what one that works them out at every refresh shows (the record of
+ * what they were worked out from is wiped every millisecond: rcx_display.digits_places1, display.h).
+ */
+static void image_follows_every_change(void **state)
+{
+    static const u8 wait_loop[] = { 0x43, 0x02, 0x05, 0x00, 0x27, 0x85 }; /* Wait 50 ms; jump back */
+    static const u8 marks_used[] = { DISPLAY_MARK_BATTERY, DISPLAY_MARK_IR_HIGH, DISPLAY_MARK_LOG_Q2, DISPLAY_MARK_DOT1 };
+    struct rcx *br[2] = { brick_new(), brick_new() };
+    unsigned ms, seed = 12345;
+    (void)state;
+    for (unsigned i = 0; i < 2; i++)
+        assert_int_equal(brick_download(br[i], 1, 0, wait_loop, sizeof wait_loop), 0);
+    for (ms = 0; ms < 60000; ms++) {
+        unsigned r;
+        seed = seed * 1103515245u + 12345u;
+        r = (seed >> 8) & 0xFFFF;
+        for (unsigned i = 0; i < 2; i++) {
+            struct rcx *b = br[i];
+            u8 c[6];
+            switch (r % 64) {
+            case 0: c[0] = 0x32; c[1] = (u8)(r >> 6 & 3); c[2] = (u8)(r >> 8 & 7); brick_cmd(b, c, 3, NULL); break;
+            case 1: c[0] = 0x42; c[1] = (u8)(r >> 6 & 3); c[2] = (u8)(r >> 8); brick_cmd(b, c, 3, NULL); break;
+            case 2: c[0] = 0x21; c[1] = (u8)((r >> 6 & 7) | (r >> 9 & 3) << 6); brick_cmd(b, c, 2, NULL); break;
+            case 3: c[0] = 0xE1; c[1] = (u8)((r >> 6 & 7) | (r >> 9 & 3) << 6); brick_cmd(b, c, 2, NULL); break;
+            case 4: c[0] = 0x13; c[1] = (u8)(r >> 6 & 7); c[2] = 2; c[3] = (u8)(r >> 9 & 7); brick_cmd(b, c, 4, NULL);
+                break;
+            case 5: select_view(b, (u8)(r >> 6 & 7)); break;
+            case 6: user_view(b, (u8)(r >> 6 & 3), 0, (u16)(r >> 8 & 3)); break;
+            case 7: c[0] = 0x14; c[1] = (u8)(r >> 6 & 3); c[2] = 2; c[3] = (u8)(r >> 8); c[4] = (u8)(r >> 3);
+                brick_cmd(b, c, 5, NULL); break;
+            case 8: brick_start(b, 0); break;
+            case 9: c[0] = 0x50; brick_cmd(b, c, 1, NULL); break;
+            case 10: display_ir_activity(b); break;
+            case 11: display_mark(b, marks_used[r >> 6 & 3], (u8)(r >> 8 & 1)); break;
+            case 12: c[0] = 0x22; c[1] = (u8)(r >> 6 & 15); c[2] = (u8)(r >> 10 & 31); brick_cmd(b, c, 3, NULL); break;
+            case 13: c[0] = 0x91; c[1] = (u8)(r >> 6 & 3); brick_cmd(b, c, 2, NULL); break;
+            default: break;
+            }
+            if (r % 4 == 0)
+                sensor_sample(b, (u8)(r >> 2 & 3), (u16)(seed >> 16 & 0x3FF));
+            if (i == 1)
+                b->display.digits_places1 = 0; /* what the digits were worked out from, forgotten */
+            vm_run(b, 4);
+            vm_tick(b);
+        }
+        if (memcmp(fake_hal_of(br[0])->lcd, fake_hal_of(br[1])->lcd, HAL_LCD_BYTES) != 0)
+            fail_msg("at %u ms the image was not composed again", ms);
+    }
+    assert_int_equal(fake_hal_of(br[0])->lcd_calls, fake_hal_of(br[1])->lcd_calls);
+    brick_free(br[0]);
+    brick_free(br[1]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -483,6 +538,7 @@ int main(void)
         cmocka_unit_test(lcd_written_only_on_change),
         cmocka_unit_test(user_view_sources),
         cmocka_unit_test(bad_operands_change_nothing),
+        cmocka_unit_test(image_follows_every_change),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
