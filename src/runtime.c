@@ -12,14 +12,6 @@ void rt_init(struct rcx_brick *k, u16 arena_addr)
     ui_init(k);
 }
 
-void rt_tick(struct rcx_brick *k)
-{
-    vm_tick(&k->vm);
-    if (ir_tick_due(k))
-        ir_tick(k);
-    ui_tick(k);
-}
-
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
     if (ir_poll_due(k))

@@ -21,7 +21,7 @@ static u8 lcd_frame[HW_LCD_FRAME_MAX] RCX_ONCHIP;
 #define STANDBY_CODE ((u8 *)0xFD80)
 #define STANDBY_RTS 0xFD8E           /* the last instruction of the standby code, also the IRQ1 handler */
 
-void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
+RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
 {
     (void)b;
     hw_motor_set(&drv_motors, port, mode, level); /* the tick interrupt writes the latch within 1 ms */
@@ -63,7 +63,7 @@ void hal_sound(struct rcx *b, u16 hz)
     TMR0_TCR = t.tcr;
 }
 
-void hal_lcd(struct rcx *b, const u8 *image)
+RCX_HIGH_CODE void hal_lcd(struct rcx *b, const u8 *image)
 {
     (void)b;
     hw_lcd_send(lcd_frame, hw_lcd_on_frame(image, lcd_frame));

@@ -127,23 +127,31 @@ static __attribute__((noinline)) void battery_sample(void)
     }
 }
 
-/* One millisecond of the runtime: the samples, the buttons, then the clock. */
-static __attribute__((noinline)) void millisecond(void)
+/* The buttons' pins changed, or a change is being timed: debounced, and each new state to the runtime. */
+static __attribute__((noinline)) void buttons_changed(u8 pins)
 {
-    u8 changed, state, i, pins;
+    u8 changed, state, i;
+
+    button_pins = pins;
+    changed = hw_debounce(&buttons, hw_buttons(pins, pins));
+    state = buttons.state;
+    for (i = 0; changed; i++, changed >>= 1, state >>= 1)
+        if (changed & 1)
+            rt_button(&brick, i, (u8)(state & 1));
+}
+
+/* One millisecond of the runtime: the samples, the buttons, then the clock. Inline in the main loop, which runs it a
+ * thousand times a second: the buttons' work, rarely needed, is a call of its own. */
+static inline void millisecond(void)
+{
+    u8 pins;
 
     if (drv_ad_seen != drv_ad_done)
         feed_samples();
     /* The same pins as last time, and no change being timed: the debounced state is what they show. */
     pins = BUTTON_PINS();
-    if (pins != button_pins || buttons.cand) {
-        button_pins = pins;
-        changed = hw_debounce(&buttons, hw_buttons(pins, pins));
-        state = buttons.state;
-        for (i = 0; changed; i++, changed >>= 1, state >>= 1)
-            if (changed & 1)
-                rt_button(&brick, i, (u8)(state & 1));
-    }
+    if (pins != button_pins || buttons.cand)
+        buttons_changed(pins);
     rt_tick(&brick);
 }
 
