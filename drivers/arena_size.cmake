@@ -3,8 +3,10 @@
 # The arena (`u8 arena[RCX_ARENA_SIZE]`, the last member of the `struct rcx` in .bss) is the only thing
 # whose size can be chosen; everything else is code and fixed data. A first link ("probe") with a known
 # arena size shows where .bss ends; the arena of the real image grows by the RAM left below the end of
-# usable RAM, less a small margin because code that uses RCX_ARENA_SIZE may compile a few bytes
-# differently with another value. The real link's ASSERTs in linker/openrcx.ld have the last word.
+# usable RAM, less a margin for code that compiles differently with another value of RCX_ARENA_SIZE. It is used
+# only as a 16-bit immediate, which is the same length whatever its value, except that gcc shortens an operation
+# on a zero byte: the size is kept off a zero low byte (the probe's 0x1234 has none), and no margin is needed. The
+# real link's ASSERTs in linker/openrcx.ld have the last word.
 #
 # Usage: cmake -DNM=<nm> -DPROBE=<probe image> -DPROBE_SIZE=<its arena> -DMARGIN=<bytes>
 #              -DHEADER=<header to write> -DSTAMP=<file to touch> -P arena_size.cmake
@@ -17,6 +19,10 @@ symbol_value(_rcx_image_end image_end)
 symbol_value(_rcx_image_base image_base)
 
 math(EXPR size "(${PROBE_SIZE} + ${ram_end} - ${bss_end} - ${MARGIN}) & ~1")
+math(EXPR low "${size} & 0xFF")
+if(low EQUAL 0)
+    math(EXPR size "${size} - 2")
+endif()
 math(EXPR image "${image_end} - ${image_base}")
 if(size LESS 1024)
     message(FATAL_ERROR "arena_size: only ${size} bytes of RAM left for programs (image ${image} bytes)")

@@ -33,6 +33,14 @@ RCX_STATIC_ASSERT(u8_is_8_bits, sizeof(u8) == 1);
 RCX_STATIC_ASSERT(u16_is_16_bits, sizeof(u16) == 2);
 RCX_STATIC_ASSERT(u32_is_32_bits, sizeof(u32) == 4);
 
+/* Scratch variables the brick keeps in its on-chip RAM (section .onchip, linker/openrcx.ld), beside the stack: not
+ * in the external RAM, which is the programs' memory. */
+#ifdef __H8300__
+#define RCX_SCRATCH __attribute__((section(".onchip")))
+#else
+#define RCX_SCRATCH
+#endif
+
 /* Little-endian 16-bit operand at p (byte codes and IR packets are little-endian; the H8 is big-endian). */
 #define RCX_LE16(p) ((u16)((u16)(p)[0] | ((u16)(p)[1] << 8)))
 

@@ -14,6 +14,7 @@
 
 RCX_STATIC_ASSERT(packet_length_fits_a_byte, IR_RX_MAX <= 255);
 RCX_STATIC_ASSERT(chunk_fits_rx, IR_CHUNK <= IR_RX_MAX);
+RCX_STATIC_ASSERT(block_reply_fits, IR_RX_MAX + 2 <= IR_BUF_SIZE); /* a 0x45 block's reply after the block */
 
 static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
@@ -44,6 +45,8 @@ static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
         ir->rx_state = v == ir->rx_sum ? IR_RX_READY : IR_RX_IDLE;
         return;
     }
+    if (ir->rx_len >= ir->reply_at) /* over the last reply: it is gone */
+        ir->last_op = RCX_OP_MESSAGE;
     ir->rx[ir->rx_len++] = v;
     ir->rx_sum = (u8)(ir->rx_sum + v);
     ir->rx_state = IR_RX_VALUE;
@@ -173,7 +176,9 @@ static void execute(struct rcx_brick *k)
     display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
     if (op != ir->last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
-        ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->reply);
+        u8 at = ir->rx_len > IR_CHUNK ? ir->rx_len : IR_CHUNK;
+        ir->reply_at = at;
+        ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->rx + at);
         ir->last_op = op;
         /* PBAliveOrNot "re-initialises the toggle bit" (spec p. 12): any packet after it is new anyway, since its
          * opcode differs, and a repeated ping is answered the same whether executed or not. */
@@ -193,7 +198,7 @@ void ir_poll(struct rcx_brick *k)
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
         if (ir->rx_state == IR_RX_READY && ir->quiet >= IR_REPLY_MS) {
             execute(k);
-            ir->tx_src = ir->reply;
+            ir->tx_src = ir->rx + ir->reply_at;
             len = ir->reply_len;
             ir->tx_pack = IR_PACK_STANDARD;
             ir->tx_mode = 0;

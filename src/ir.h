@@ -16,6 +16,10 @@ struct rcx_brick;
 
 #define IR_BLOCK_MAX 200            /* longest 0x45 data block accepted: the 200 of nqc -firmware and firmdl3 */
 #define IR_RX_MAX (6 + IR_BLOCK_MAX) /* opcode, block number, length, data, block checksum */
+/* The receiver, the transmitter's chunk and the last reply share one buffer (program memory is what a larger one
+ * would cost): a reply goes after the command it answers and after the chunk, which the 189 bytes of the longest
+ * reply (MemMap) just fill. Only a 0x45 block is longer than the chunk, and its reply has two bytes. */
+#define IR_BUF_SIZE (IR_CHUNK + RCX_REPLY_MAX)
 #define IR_CHUNK 40                 /* bytes handed to hal_ir_send() at once: a whole 16-byte UART packet fits */
 #define IR_QUIET_MS 30              /* silence inside a packet that resynchronises the receiver */
 #define IR_ECHO_MS 10               /* after transmitting, about two character times at 2400 baud for the echo */
@@ -34,13 +38,15 @@ struct rcx_ir {
                            IR_QUIET_MS at least, see ir_tick_due) */
     u8 rx_len;          /* payload bytes accepted */
     u8 rx_need;         /* payload bytes of this packet, once the opcode (and a 0x45 length) told */
-    u8 rx[IR_RX_MAX];   /* also the transmitter's chunk: nothing is received while the brick transmits */
+    u8 rx[IR_BUF_SIZE]; /* the packet from rx[0]; the transmitter's chunk from rx[0] too (nothing is received while
+                           the brick transmits); the last reply from rx[reply_at] */
 
     /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed; IR messages
-     * (F7, FF) never are. Starts as F7, so that the first packet is always new. */
+     * (F7, FF) never are. Starts as F7, so that the first packet is always new, and becomes F7 again once a packet
+     * reaches into the reply, which then can no longer be sent again. */
     u8 last_op;
     u8 reply_len;       /* 0: the last command has no reply */
-    u8 reply[RCX_REPLY_MAX];
+    u8 reply_at;        /* where in rx the last reply is: after its command and after the chunk */
 
     /* Transmitter: a packet is framed on the fly from tx_src, IR_CHUNK bytes at a time, into rx. */
     const u8 *tx_src;

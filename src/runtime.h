@@ -33,6 +33,34 @@ static inline void rt_tick(struct rcx_brick *k)
     ui_tick(k);
 }
 
+/*
+ * Quiet milliseconds, for a port that sleeps between ticks: while no task runs, no IR exchange, sound or reversing
+ * pause is in progress and the power-down timer need not start again, a millisecond that neither begins nor ends a
+ * 10 ms step only counts. rt_quiet() tells how many of the next milliseconds are such (0: the next is not), right
+ * after rt_run(); rt_skip(k, n), n no more than that, does what n calls of rt_tick() would, except that a minute of
+ * the watch or of the power-down timer that ends in them is seen at the next rt_tick(). rt_run() is not called for
+ * them: it would have nothing to do, but for a PBTurnOff that a task ended with, carried out up to 8 ms later. The
+ * inputs must be as quiet: the port stops skipping once a sample or a byte is there to feed.
+ * tests/unit/test_quiet_ms.c holds a skipping brick to one that ticks every millisecond.
+ */
+static inline u8 rt_quiet(const struct rcx_brick *k)
+{
+    const struct rcx *b = &k->vm;
+
+    /* After rt_run(), an IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays:
+     * ir_poll() and ui_poll() did all they could do without the clock. */
+    if (!b->ms || b->runmask || ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
+        return 0;
+    return (u8)(9 - b->ms); /* the step's last millisecond is rt_tick()'s */
+}
+
+static inline void rt_skip(struct rcx_brick *k, u8 n)
+{
+    k->vm.ms = (u8)(k->vm.ms + n);
+    k->vm.watch_ms = (u16)(k->vm.watch_ms + n);
+    k->ui.idle_ms = (u16)(k->ui.idle_ms + n);
+}
+
 /* Main-loop work: complete packets are executed and answered, transmit requests sent, then up to `budget` byte
  * codes run. Returns the byte codes executed. */
 u16 rt_run(struct rcx_brick *k, u16 budget);

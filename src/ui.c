@@ -61,7 +61,7 @@ void ui_tick(struct rcx_brick *k)
         k->ui.idle_ms = 0;
         k->ui.idle_min = 0;
     } else if (++k->ui.idle_ms >= UI_MINUTE_MS) {
-        k->ui.idle_ms = 0;
+        k->ui.idle_ms -= UI_MINUTE_MS; /* not 0: rt_skip() may have counted past the minute */
         if (k->vm.power_down_min && ++k->ui.idle_min >= k->vm.power_down_min)
             k->ui.off = UI_OFF_ASKED;
     }

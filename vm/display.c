@@ -60,7 +60,7 @@ RCX_STATIC_ASSERT(output_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HA
  * The image being composed. It is scratch, valid only during display_tick(), so it need not live in struct rcx (all
  * bricks run on one thread); at a fixed address every segment is lit without a pointer to pass around.
  */
-static u8 work[DISPLAY_BYTES];
+static u8 work[DISPLAY_BYTES] RCX_SCRATCH;
 
 /* Bit n of a byte. */
 static const u8 bit[8] = { 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80 };

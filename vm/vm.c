@@ -48,7 +48,7 @@ void vm_tick(struct rcx *b)
         events_tick(b);
     }
     if (++b->watch_ms >= 60000u) {
-        b->watch_ms = 0;
+        b->watch_ms -= 60000u; /* not 0: rt_skip() (src/runtime.h) may have counted past the minute */
         if (++b->watch >= 24 * 60)
             b->watch = 0;
     }

@@ -29,7 +29,7 @@ RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
 
 /* The A/D interrupt applies the mask after each scan; the tick interrupt removes power before the next, and
  * for good once an input is no longer in the mask. */
-RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
+void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
     u8 bit, power;
 

@@ -113,8 +113,9 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
     }
 }
 
-/* The battery: averaged over 64 ms, steadier, and one conversion to millivolts instead of many; a sample every 8 ms
- * (BATTERY_EVERY) is plenty for that. ADDRD is read as it is: whether from the scan running or the one before does
+/* The battery: averaged over 8 samples, steadier, and one conversion to millivolts instead of many; a sample every
+ * 8 ms (BATTERY_EVERY) is plenty for that, and every 40 ms on average while the main loop skips quiet milliseconds
+ * (their counts jump over the 8 ms marks). ADDRD is read as it is: whether from the scan running or the one before does
  * not matter. */
 #define BATTERY_EVERY 7 /* + 1 ms */
 static __attribute__((noinline)) void battery_sample(void)
@@ -191,8 +192,23 @@ int main(void)
         brick.vm.yield = 0;
         if (seen != drv_ms_ticks)
             continue;
-        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. */
-        if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks)
-            h8_sleep();
+        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
+         * milliseconds (rt_quiet) it sleeps on, as long as no sample or byte comes in, and they are counted at once:
+         * all but the last, which rt_tick() takes as usual. The buttons are looked at then: a press is seen at
+         * most 9 ms later, and the debouncing counts as before from there. */
+        if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks) {
+            u8 quiet = (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
+
+            do
+                h8_sleep();
+            while ((u8)(drv_ms_ticks - seen) <= quiet && !sci_waiting() && drv_ad_seen == drv_ad_done);
+            i = (u8)(drv_ms_ticks - seen);
+            if (i > 1) {
+                if (--i > quiet)
+                    i = quiet;
+                rt_skip(&brick, i);
+                seen = (u8)(seen + i);
+            }
+        }
     }
 }
