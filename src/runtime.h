@@ -35,8 +35,8 @@ static inline void rt_tick(struct rcx_brick *k)
 
 /*
  * Quiet milliseconds, for a port that sleeps between ticks: while no task runs, no IR exchange, sound or reversing
- * pause is in progress and the power-down timer need not start again, a millisecond that neither begins nor ends a
- * 10 ms step only counts. rt_quiet() tells how many of the next milliseconds are such (0: the next is not), right
+ * pause is in progress and the power-down timer need not start again, a millisecond that does not end a 10 ms step
+ * only counts. rt_quiet() tells how many of the next milliseconds are such (0: the next is not), right
  * after rt_run(); rt_skip(k, n), n no more than that, does what n calls of rt_tick() would, except that a minute of
  * the watch or of the power-down timer that ends in them is seen at the next rt_tick(). rt_run() is not called for
  * them: it would have nothing to do, but for a PBTurnOff that a task ended with, carried out up to 8 ms later. The
@@ -49,7 +49,7 @@ static inline u8 rt_quiet(const struct rcx_brick *k)
 
     /* After rt_run(), an IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays:
      * ir_poll() and ui_poll() did all they could do without the clock. */
-    if (!b->ms || b->runmask || ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
+    if (b->runmask || ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
         return 0;
     return (u8)(9 - b->ms); /* the step's last millisecond is rt_tick()'s */
 }

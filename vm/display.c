@@ -213,9 +213,9 @@ void display_mark(struct rcx *b, u8 seg, u8 on)
     }
 }
 
-RCX_STATIC_ASSERT(refresh_is_the_10ms_step, DISPLAY_REFRESH_MS == 10);
+RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 
-/* Once per 10 ms step of the machine's clock, at its first millisecond (vm_tick). */
+/* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */
 void display_tick(struct rcx *b)
 {
     struct rcx_display *d = &b->display;

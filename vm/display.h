@@ -20,10 +20,12 @@
 struct rcx;
 
 #define DISPLAY_BYTES 9
-#define DISPLAY_REFRESH_MS 10  /* the image is recomposed this often and sent only when it differs */
-#define DISPLAY_FRAME_STEPS 26 /* refreshes per frame of the walking figure: 260 ms; the watch's point is lit for
+#define DISPLAY_REFRESH_MS 20  /* the image is recomposed this often (every other 10 ms step, vm_tick) and sent only
+                                  when it differs: enough for the eye, and half of what the display costs an idle
+                                  brick at every step */
+#define DISPLAY_FRAME_STEPS 13 /* refreshes per frame of the walking figure: 260 ms; the watch's point is lit for
                                   three frames and dark for three (0.78 s each) */
-#define DISPLAY_IR_STEPS 50    /* refreshes the IR mark stays lit after IR activity: 0.5 s */
+#define DISPLAY_IR_STEPS 25    /* refreshes the IR mark stays lit after IR activity: 0.5 s */
 #define DISPLAY_MAX 9999       /* larger magnitudes show as "----" */
 
 /* Views (SelectDisplay, spec p. 66). */
@@ -66,7 +68,7 @@ struct rcx_display {
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
 void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
-void display_tick(struct rcx *b);                                   /* every 10 ms (vm_tick) */
+void display_tick(struct rcx *b);                                   /* every 20 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
  * talking. A field store, not a call: it is made in the IR layer's busiest paths. */
 #define display_ir_activity(b) ((b)->display.ir = DISPLAY_IR_STEPS)

@@ -348,8 +348,8 @@ void events_input(struct rcx *b, u8 n)
 
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
  * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
- * durations use, right after each 100 ms timer step (vm_tick calls this at the first millisecond of each 10 ms
- * step). */
+ * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
+ * timers have moved on and before the tasks the step wakes run). */
 void events_tick(struct rcx *b)
 {
     if (b->sensor[0].others)

@@ -43,10 +43,6 @@ void vm_tick(struct rcx *b)
         outputs_tick(b);
     if (vm_sounding(b))
         sound_tick(b);
-    if (!b->ms) { /* the first millisecond of a 10 ms step: checked here, where it costs no call */
-        display_tick(b);
-        events_tick(b);
-    }
     if (++b->watch_ms >= 60000u) {
         b->watch_ms -= 60000u; /* not 0: rt_skip() (src/runtime.h) may have counted past the minute */
         if (++b->watch >= 24 * 60)
@@ -58,9 +54,15 @@ void vm_tick(struct rcx *b)
     b->ticks10++;
     if (b->waiting)
         wake_waiting(b);
-    if (++b->step10 < 10)
-        return;
-    b->step10 = 0;
-    for (i = 0; i < RCX_TIMERS; i++)
-        b->timer[i] = (u16)((b->timer[i] + 1) & 0x7FFF); /* 0-32767, then 0 again (spec p. 6) */
+    if (++b->step10 >= 10) {
+        b->step10 = 0;
+        for (i = 0; i < RCX_TIMERS; i++)
+            b->timer[i] = (u16)((b->timer[i] + 1) & 0x7FFF); /* 0-32767, then 0 again (spec p. 6) */
+    }
+    /* A 10 ms step ended: once the timers have moved on, the events that watch them, and every other step the
+     * display (DISPLAY_REFRESH_MS). */
+    if (b->ticks10 & 1)
+        display_tick(b);
+    events_tick(b);
 }
+

@@ -92,6 +92,8 @@ _rcx_timer_irq:
 	mov.b	@_drv_ad_done:8,r1l
 	add.b	#8,r1l			; DRV_AD_SLOT
 	mov.b	r1l,@_drv_ad_done:8
+	mov.b	#1,r1l
+	mov.b	r1l,@_drv_woken:8	; the main loop has a scan to feed
 .Lstored:
 	mov.b	r0l,r0l
 	bne	.Lrestart
@@ -100,9 +102,8 @@ _rcx_timer_irq:
 	mov.b	r1l,@0xbb:8
 	bra	.Lreturn
 .Lrestart:
-	mov.b	@0xe8:8,r1l		; ADF, when set, read as 1 ...
-	sub.b	r1l,r1l
-	mov.b	r1l,@0xe8:8		; ... and written 0
+	sub.b	r1l,r1l			; ADF, when set, read as 1 on entry (r0l) ...
+	mov.b	r1l,@0xe8:8		; ... and written 0: the scan stops
 	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3
 	mov.b	r0h,r0h
 	beq	.Lstart

@@ -25,6 +25,7 @@ static struct rcx_brick brick;
 volatile u8 drv_ms_ticks RCX_EIGHT;
 volatile u8 drv_ad_done RCX_EIGHT;
 volatile u8 drv_ad_seen RCX_EIGHT;
+volatile u8 drv_woken RCX_EIGHT;
 volatile u16 drv_ad_slot[DRV_AD_SLOTS][DRV_AD_SLOT / 2] RCX_ONCHIP;
 struct hw_motors drv_motors RCX_ONCHIP;
 u8 drv_sensor_power RCX_EIGHT;
@@ -177,6 +178,7 @@ int main(void)
     h8_irq_enable();
 
     for (;;) {
+        drv_woken = 0; /* what comes in from now on wakes the quiet milliseconds' sleep below */
         if (sci_waiting())
             sci_drain(&brick);
         if (drv_sci_mode)
@@ -201,7 +203,7 @@ int main(void)
 
             do
                 h8_sleep();
-            while ((u8)(drv_ms_ticks - seen) <= quiet && !sci_waiting() && drv_ad_seen == drv_ad_done);
+            while ((u8)(drv_ms_ticks - seen) <= quiet && !drv_woken);
             i = (u8)(drv_ms_ticks - seen);
             if (i > 1) {
                 if (--i > quiet)

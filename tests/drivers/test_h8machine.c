@@ -161,9 +161,10 @@ static void idle_brick_sleeps_between_ticks(void **state)
     /* The rest of each millisecond asleep; the millisecond's work itself is what make bench reports. The tick
      * interrupt leaves out the scans that change nothing, the runtime's engines and the IR layer are called only
      * when they have work, the display's digits are worked out only when what they show changed, the
-     * millisecond's chain in the main loop is inline, and the main loop sleeps through quiet milliseconds
-     * (rt_quiet): at most 11.5 % awake (the goal is 8 %; 16.5 % without the quiet milliseconds). */
-    assert_true((double)(m.slept - s0) / (double)(m.h.states - t0) > 0.885);
+     * millisecond's chain in the main loop is inline, the main loop sleeps through quiet milliseconds (rt_quiet)
+     * and the display is recomposed every 20 ms: at most 8 % awake, the issue's goal (16.5 % without the quiet
+     * milliseconds, 8.3 % with them as long as every interrupt woke the main loop's checks of the SCI and A/D). */
+    assert_true((double)(m.slept - s0) / (double)(m.h.states - t0) > 0.92);
 }
 
 int main(int argc, char **argv)

@@ -160,6 +160,8 @@ static void watch_point_blinks(void **state)
     for (ms = 0; ms < 10000; ms++) {
         int now;
         vm_tick(b);
+        if (!h->lcd_calls) /* the first image comes at the end of the first 10 ms step */
+            continue;
         if (lcd_reads(h->lcd, "00.00") && lcd_reads(h->lcd, "0000"))
             fail_msg("at %u ms the watch reads neither 00.00 nor 0000", ms);
         now = lcd_lit(h->lcd, lcd_point_right_of[3]);
@@ -334,18 +336,21 @@ static void ir_mark_lit_for_a_moment(void **state)
 {
     struct rcx *b = brick_new();
     struct fake_hal *h = fake_hal_of(b);
-    unsigned ms, lit = 0;
+    unsigned ms, lit = 0, first = 0;
     (void)state;
     assert_false(lcd_lit(glass(b), SG(6, 2)));
     display_ir_activity(b);
     for (ms = 0; ms < 2000; ms++) {
         vm_tick(b);
         if (lcd_lit(h->lcd, SG(6, 2))) {
-            if (lit != ms)
+            if (!lit)
+                first = ms;
+            else if (first + lit != ms)
                 fail_msg("the IR mark went dark and came back");
             lit++;
         }
     }
+    assert_true(lit && first < DISPLAY_REFRESH_MS); /* at the next refresh */
     assert_true(lit >= 250 && lit <= 800);
     assert_false(lcd_lit(h->lcd, SG(6, 3)));
     brick_free(b);

@@ -384,10 +384,10 @@ static void garbage_never_hangs_the_receiver(void **state)
 static unsigned ir_mark_ms(struct rig *r, unsigned max)
 {
     unsigned ms;
-    ticks(r, 10);
-    for (ms = 10; ms < max && IR_MARK_LIT(r); ms++)
+    ticks(r, DISPLAY_REFRESH_MS); /* lit by the next refresh */
+    for (ms = DISPLAY_REFRESH_MS; ms < max && IR_MARK_LIT(r); ms++)
         ticks(r, 1);
-    return IR_MARK_LIT(r) ? ms : ms == 10 ? 0 : ms;
+    return IR_MARK_LIT(r) ? ms : ms == DISPLAY_REFRESH_MS ? 0 : ms;
 }
 
 /* firm0328 lights the IR mark for a moment (0.25-0.8 s) around every IR exchange (reference-firmware.md, "The
