@@ -406,7 +406,7 @@ int h8m_reply(struct h8machine *m, unsigned from, unsigned len, uint8_t *reply, 
             return -1;
         }
     }
-    if (m->sent[from] != 0x55 || m->sent[from + 1] != 0xFF || m->sent[from + 2] != 0x00) {
+    if (m->nsent != from + total || m->sent[from] != 0x55 || m->sent[from + 1] != 0xFF || m->sent[from + 2] != 0x00) {
         fprintf(stderr, "reply: header at %u, nsent %u:", from, m->nsent);
         for (i = from; i < m->nsent; i++)
             fprintf(stderr, " %02x", m->sent[i]);
