@@ -165,12 +165,19 @@ static int whole_image(const char *image, const char *nm, unsigned busy, struct 
             worst = lat;
     }
     memset(prof, 0, sizeof prof);
+    memset(pc_states, 0, sizeof pc_states);
     m->h.trace = getenv("H8BENCH_PROFILE") ? profile : NULL;
     if (h8m_run(m, ts + 1100 * H8M_MS))
         goto failed;
     m->h.trace = NULL;
     if (getenv("H8BENCH_PROFILE"))
         dump("busy, per ms", 1000);
+    if (getenv("H8BENCH_PCS2") && busy == 9) {
+        unsigned a;
+        for (a = 0; a < 65536; a++)
+            if (pc_states[a] && !strcmp(h8_func_at((uint16_t)a), getenv("H8BENCH_PCS2")))
+                printf("  %04x %8.1f\n", a, pc_states[a] / 1100.0);
+    }
     x1 = poll_var(m, 1, NULL);
     x2 = poll_var(m, 2, NULL);
     if (x1 <= 0 || x2 <= x1) {
