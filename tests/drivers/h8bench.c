@@ -165,19 +165,12 @@ static int whole_image(const char *image, const char *nm, unsigned busy, struct 
             worst = lat;
     }
     memset(prof, 0, sizeof prof);
-    memset(pc_states, 0, sizeof pc_states);
     m->h.trace = getenv("H8BENCH_PROFILE") ? profile : NULL;
     if (h8m_run(m, ts + 1100 * H8M_MS))
         goto failed;
     m->h.trace = NULL;
     if (getenv("H8BENCH_PROFILE"))
         dump("busy, per ms", 1000);
-    if (getenv("H8BENCH_PCS2") && busy == 9) {
-        unsigned a;
-        for (a = 0; a < 65536; a++)
-            if (pc_states[a] && !strcmp(h8_func_at((uint16_t)a), getenv("H8BENCH_PCS2")))
-                printf("  %04x %8.1f\n", a, pc_states[a] / 1100.0);
-    }
     x1 = poll_var(m, 1, NULL);
     x2 = poll_var(m, 2, NULL);
     if (x1 <= 0 || x2 <= x1) {
@@ -272,7 +265,7 @@ int main(int argc, char **argv)
            (double)insns / RUNS, (double)run / (double)insns);
     printf("  main loop             %5.0f states per byte code (rt_run, budget %d, with the loop's own checks)\n",
            in_loop, BUDGET);
-    printf("  every millisecond     %5llu states: tick interrupt %llu (with %d of ROM entry), rt_tick %llu,\n"
+    printf("  a ticked millisecond  %5llu states: tick interrupt %llu (with %d of ROM entry), rt_tick %llu,\n"
            "                        samples and buttons %llu: %.1f %% of the CPU (an active sensor adds the A/D\n"
            "                        interrupt, %llu states, %.1f %%)\n",
            per_ms, tick_irq, IRQ_ENTRY, tick, samples, 100.0 * (double)per_ms * 1000.0 / CLOCK,
@@ -300,7 +293,8 @@ int main(int argc, char **argv)
                one.rate, one.rate / 2);
         printf("  9 busy tasks     %6.0f byte codes/s (%5.0f x++/s)  goal >= 30000; firm0328 3054 (1527)\n",
                ten.rate, ten.rate / 2);
-        printf("  nothing to do    %6.1f %% of the CPU every millisecond  goal <= 8 %%\n", 100 * one.idle_share);
+        printf("  nothing to do    %6.1f %% of the CPU every millisecond  goal <= 8 %% (most of them skipped: "
+               "rt_quiet)\n", 100 * one.idle_share);
         printf("  ping while busy  %.1f ms (1 task), %.1f ms (9 tasks) from its last byte to the reply; bound 30 ms\n",
                one.ping_ms, ten.ping_ms);
         printf("cost model (h8sim.h): external RAM 3 states a byte, 6 a word or instruction word (8-bit bus); on-chip\n"
