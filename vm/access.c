@@ -54,6 +54,14 @@ static void jump(struct rcx *b, struct rcx_task *t, u16 pc)
     }
 }
 
+/* The labels are pairs, EV's then AC's (vm/events.h), so the EV and AC inputs (0 and 1) index them. */
+RCX_STATIC_ASSERT(labels_are_pairs,
+                  offsetof(struct rcx_task_events, ac_pc) == offsetof(struct rcx_task_events, ev_pc) + 2 &&
+                  offsetof(struct rcx_task_events, ac_sub) == offsetof(struct rcx_task_events, ev_sub) + 1 &&
+                  ACCESS_IN_EV == 0 && ACCESS_IN_AC == 1);
+#define label_pc(t, input) (*(const u16 *)(const void *)((const u8 *)&(t)->ev.ev_pc + 2u * (input)))
+#define label_sub(t, input) (*((const u8 *)&(t)->ev.ev_sub + (input)))
+
 /* The EV, AC, EXIT EV, EXIT AC or END input: the first and last rules above. */
 void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
@@ -71,9 +79,9 @@ void access_input(struct rcx *b, struct rcx_task *t, u8 input)
             if (s == ACCESS_AC_EV)
                 n = ACCESS_AC;
         }
-        if (input <= ACCESS_IN_AC) {
-            t->sub = input ? t->ev.ac_sub : t->ev.ev_sub;
-            jump(b, t, input ? t->ev.ac_pc : t->ev.ev_pc);
+        if (input <= ACCESS_IN_AC) { /* EV (0) or AC (1): the label of that region, one load each */
+            t->sub = label_sub(t, input);
+            jump(b, t, label_pc(t, input));
         }
     }
     if (!ACCESS_HAS_AC(n))

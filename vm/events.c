@@ -136,6 +136,9 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     e->upper = events_default[row][1];
 }
 
+RCX_STATIC_ASSERT(rem_count_are_last_click, offsetof(struct rcx_event, u.click.last_click) ==
+                  offsetof(struct rcx_event, u.cal.rem) && offsetof(struct rcx_event_cal, count) ==
+                  offsetof(struct rcx_event_cal, rem) + 1);
 void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
 {
     struct rcx_event *e;
@@ -144,7 +147,11 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
         return; /* a cleared event has no sensor to measure */
     e->state = RCX_EVENT_STATE_CAL_START;
     e->flags &= F_BOOL;
-    memset(&e->u, 0, sizeof e->u);
+    /* The sums and the count start from 0 (the pct bytes are set below): word stores, cheaper than a memset() of the
+     * union. The byte after pct[] is never used and stays 0 from SetEvent. */
+    e->u.cal.sum8 = 0;
+    e->u.click.last_click = 0; /* rem and count */
+    e->u.cal.raw_sum = 0;
     e->u.cal.pct[0] = lower;
     e->u.cal.pct[1] = upper;
     e->u.cal.pct[2] = hyst;

@@ -71,7 +71,7 @@ struct rcx_task_events {
     u16 mon;        /* events being monitored (MON) */
     u16 ev_pc;      /* EV: exit label of event monitoring ... */
     u16 ac_pc;      /* AC: ... and of access control, each a pc in the code object it was entered in */
-    u8 ev_sub;
+    u8 ev_sub;      /* (pairs in the order of the EV and AC inputs, which index them: vm/access.c) */
     u8 ac_sub;
     u8 rc;          /* RC: resources held */
     u8 state;       /* ACCESS_NONE ... ACCESS_AC_EV (vm/access.h) */
