@@ -107,11 +107,11 @@ u8 outputs_global_status(const struct rcx *b, u8 i)
 void outputs_update(struct rcx *b, u8 list, u16 change)
 {
     u8 *reg = (list & OUTPUTS_GLOBAL) ? b->out.global : b->out.motor, n = RCX_MOTORS;
-    u8 clear = (u8)(change >> 8), flip = (u8)change;
 
+    /* The bytes of `change` used where they are: copied into variables of their own, one spills to the stack. */
     for (; n; n--, reg++, list >>= 1)
         if (list & 1)
-            *reg = (u8)((*reg & ~clear) ^ flip);
+            *reg = (u8)((*reg & ~(change >> 8)) ^ change);
     outputs_changed(b);
 }
 

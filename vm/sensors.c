@@ -78,9 +78,10 @@ static s16 celsius(u16 raw)
  * counts nothing. Sampled every millisecond, a step per sample (1 000 steps/s, 62 turns/s) is still counted exactly.
  */
 #define PHASE_NONE 4
-/* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. */
+/* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. For a 10-bit raw that
+ * is the high byte of raw * 4: two additions, where gcc shifts right in a six-step loop. */
 static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
-#define rotation_phase(raw) phase_of[(raw) >> 6]
+#define rotation_phase(raw) phase_of[(u8)((u16)((raw) << 2) >> 8)]
 
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
 {

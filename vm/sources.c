@@ -16,8 +16,8 @@ struct source_row {
     u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value), LIMIT_EXISTS, LIMIT_WRITABLE */
 };
 #define SHAPE_WORD 0x20     /* a 16-bit field, else 8-bit unsigned */
-#define SHAPE_STORE 0x40    /* a write stores the value as it is */
-#define SHAPE_FIELD 0x80    /* read straight from the field */
+#define SHAPE_STORE 0x40    /* a write stores any value as it is (message and counters then tell the events) */
+#define SHAPE_FIELD 0x80    /* read straight from the field (without it, the place serves writes only) */
 #define LIMIT_EXISTS 0x40
 #define LIMIT_WRITABLE 0x80
 RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
@@ -27,9 +27,10 @@ RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
 #define STORE SHAPE_STORE
 #define RCX_MEMBER(m) (((struct rcx *)0)->m)
 #define COMPUTED 0, 0
-#define FIELD(field, elem, store)                                                                   \
+#define PLACE(field, elem, store)                                                                   \
     (u16)offsetof(struct rcx, field),                                                              \
-    (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store) | SHAPE_FIELD)
+    (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store))
+#define FIELD(field, elem, store) PLACE(field, elem, (store) | SHAPE_FIELD)
 
 static const struct source_row rows[RCX_SOURCE_COUNT] = {
 #define RCX_SRC(num, id, name, max, access, place) [num] = { place, (u8)((max) | (access)) },
@@ -51,10 +52,14 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
     return r;
 }
 
-/* The field of a plain source at an index already checked (<= 47: an 8-bit multiply). */
-static u8 *field(struct rcx *b, const struct source_row *r, u16 index)
+/* The field of a plain source at an index already checked (<= 47). Both factors are byte variables so that gcc
+ * multiplies with one mulxu instead of calling __mulhi3; inlined, it leaves source_get() a register to spare. */
+static inline __attribute__((always_inline)) u8 *field(struct rcx *b, const struct source_row *r, u16 index)
 {
-    return (u8 *)b + r->offset + (u8)index * (u8)(r->shape & 0x1F);
+    u8 stride = r->shape;
+
+    stride &= 0x1F;
+    return (u8 *)b + r->offset + (u16)((u8)index * stride);
 }
 
 s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n)
@@ -77,6 +82,18 @@ static u16 next_random(struct rcx *b)
     return x;
 }
 
+/* The variable a VAR or INDIRECT source names (INDIRECT: the one whose number variable `index` holds); NULL when
+ * there is none. The source comes in the high byte and the index (<= 47, checked) in the low one: with three
+ * arguments the H8/300 passes all of them in registers. */
+static s16 *var_of(struct rcx *b, struct rcx_task *t, u16 src_index)
+{
+    s16 *v = var_ref(b, t, (u8)src_index);
+
+    if (v && (u8)(src_index >> 8) == RCX_SRC_INDIRECT)
+        v = var_ref(b, t, (u16)*v);
+    return v;
+}
+
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const struct source_row *r;
@@ -94,9 +111,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
     }
     if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
-        v = var_ref(b, (struct rcx_task *)t, index);
-        if (v && src == RCX_SRC_INDIRECT)
-            v = var_ref(b, (struct rcx_task *)t, (u16)*v);
+        v = var_of(b, (struct rcx_task *)t, (u16)(src << 8 | index));
         return v ? *v : 0;
     }
     if (src == RCX_SRC_MOTOR)
@@ -110,9 +125,11 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return (s16)(next_random(b) % (u16)(index + 1));
     }
     if (src == RCX_SRC_TASK_EVENTS) {
+        u8 i = (u8)index, size = sizeof *t; /* two byte variables: one mulxu; b->task[index] calls __mulhi3 */
+
         if (index == RCX_TASKS) /* index 10: the asking task's own events, as nqc reads CurrentEvents() */
             return t ? (s16)t->ev.events : 0;
-        return (s16)b->task[index].ev.events;
+        return (s16)((const struct rcx_task *)((const u8 *)b->task + (u16)(i * size)))->ev.events;
     }
     if (src == RCX_SRC_TIMER10)
         /* 10 x the 100 ms count plus the 10 ms steps into the current 100 ms tick (reference-firmware.md). */
@@ -126,11 +143,15 @@ s16 source_poll(struct rcx *b, const u8 *cmd)
 {
     u8 src = cmd[1], index = cmd[2];
 
-    if (!row(src, index, LIMIT_EXISTS) || (src == RCX_SRC_VAR && index >= RCX_GLOBALS))
-        return (s16)-32768;
-    return source_get(b, NULL, src, index);
+    if (src == RCX_SRC_VAR ? index < RCX_GLOBALS : row(src, index, LIMIT_EXISTS) != NULL)
+        return source_get(b, NULL, src, index);
+    return (s16)-32768;
 }
 
+/*
+ * The checks come first and the store is shared: most writable sources end in storing the value (or, for the fast
+ * timer, a tenth of it) at their place, as a word or a byte by the row.
+ */
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 {
     const struct source_row *r;
@@ -139,51 +160,50 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 
     if ((r = row(src, index, LIMIT_EXISTS | LIMIT_WRITABLE)) == NULL)
         return;
-    p = field(b, r, index);
-    if (r->shape & SHAPE_STORE) {      /* thresholds, click counter, UART buffer: stored as they are */
-        if (r->shape & SHAPE_WORD)
-            *(s16 *)(void *)p = value;
-        else
-            *p = (u8)value;
-        return;
-    }
     /* Tested one by one: a switch here costs a 74-byte jump table. */
     if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
-        v = var_ref(b, t, index);
-        if (v && src == RCX_SRC_INDIRECT)
-            v = var_ref(b, t, (u16)*v);
-        if (v)
+        if ((v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
             *v = value;
-    } else if (src == RCX_SRC_TIMER || src == RCX_SRC_TIMER10) {
-        if (value >= 0)
-            b->timer[index] = src == RCX_SRC_TIMER ? (u16)value : (u16)((u16)value / 10u);
-    } else if (src == RCX_SRC_RANDOM) {
+        return;
+    }
+    if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
-    } else if (src == RCX_SRC_PROGRAM) {
-        if (value >= 0 && value < RCX_PROGRAMS)
-            sched_select_program(b, (u8)value, t != NULL);
-    } else if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
-        if (value >= 0 && value <= 0xFF) {
-            if (src == RCX_SRC_SENSOR_TYPE)
-                sensor_set_type(b, (u8)index, (u8)value);
-            else
-                sensor_set_mode(b, (u8)index, (u8)value);
+        return;
+    }
+    /* Thresholds, click counter, UART buffer, message and counters (SHAPE_STORE) take any value; the rest none
+     * below 0. */
+    if (!(r->shape & SHAPE_STORE)) {
+        if (value < 0)
+            return;
+        if (src == RCX_SRC_PROGRAM) {
+            if (value < RCX_PROGRAMS)
+                sched_select_program(b, (u8)value, t != NULL);
+            return;
         }
-    } else if (src == RCX_SRC_WATCH) {
-        if (value >= 0 && value < 24 * 60) {
-            b->watch = (u16)value;
+        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
+            if (value <= 0xFF) /* one call through a pointer is shorter than two calls */
+                (src == RCX_SRC_SENSOR_TYPE ? sensor_set_type : sensor_set_mode)(b, (u8)index, (u8)value);
+            return;
+        }
+        if (src == RCX_SRC_TIMER10)
+            value = (s16)((u16)value / 10u);
+        if (src == RCX_SRC_WATCH) {
+            if (value >= 24 * 60)
+                return;
             b->watch_ms = 0;
         }
-    } else if (src == RCX_SRC_MESSAGE) {
-        b->message = (u8)value;
-        events_message_changed(b);
-    } else if (src == RCX_SRC_COUNTER) {
-        b->global[index] = value;
-        events_counter_changed(b, (u8)index);
-    } else {
-        /* Hysteresis "must be non-negative"; a duration is 50 ms - 327 s (5-32767). */
-        if (value >= (src == RCX_SRC_DURATION ? 5 : 0))
-            *(s16 *)(void *)p = value;
+        /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
+        if (src == RCX_SRC_DURATION && value < 5)
+            return;
     }
+    p = field(b, r, index);
+    if (r->shape & SHAPE_WORD)
+        *(s16 *)(void *)p = value;
+    else
+        *p = (u8)value;
+    if (src == RCX_SRC_MESSAGE)
+        events_message_changed(b);
+    if (src == RCX_SRC_COUNTER)
+        events_counter_changed(b, (u8)index);
 }
