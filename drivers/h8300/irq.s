@@ -41,8 +41,14 @@ _rcx_timer_irq:
 	mov.b	@_drv_ms_ticks:8,r1l
 	inc	r1l
 	mov.b	r1l,@_drv_ms_ticks:8
-	mov.b	#1,r1l
+	mov.b	@_drv_quiet:8,r1l	; quiet milliseconds the main loop lets pass
+	beq	1f
+	dec	r1l
+	mov.b	r1l,@_drv_quiet:8
+	bra	2f
+1:	mov.b	#1,r1l
 	mov.b	r1l,@_drv_yield:16	; rcx.yield: vm_run returns at its next check
+2:
 	sub.b	r1h,r1h
 	mov.b	@_drv_motors+8:16,r1l	; drv_motors.phase, 0-7
 	mov.b	@(_drv_motors,r1),r2l
@@ -94,6 +100,7 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_ad_done:8
 	mov.b	#1,r1l
 	mov.b	r1l,@_drv_woken:8	; the main loop has a scan to feed
+	mov.b	r1l,@_drv_yield:16
 .Lstored:
 	mov.b	r0l,r0l
 	bne	.Lrestart
