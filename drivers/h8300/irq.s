@@ -56,11 +56,13 @@ _rcx_timer_irq:
 	inc	r1l
 	and.b	#7,r1l
 	mov.b	r1l,@_drv_motors+8:16
-	mov.b	@0xbb:8,r1l		; P6DR: sensors unpowered for the scan, and so they stay if no longer wanted
-	and.b	#0xf8,r1l
-	mov.b	r1l,@0xbb:8
 	mov.b	r0h,r0h
-	bne	.Lrestart		; active sensors: their scan was taken by the A/D interrupt
+	beq	.Lpassive
+	mov.b	@0xbb:8,r1l		; P6DR: active sensors unpowered for the scan (hal_sensor_power unpowers
+	and.b	#0xf8,r1l		; one no longer wanted)
+	mov.b	r1l,@0xbb:8
+	bra	.Lrestart		; their scan was taken by the A/D interrupt
+.Lpassive:
 	btst	#7,r0l			; ADF: the scan started a millisecond ago is complete
 	beq	.Lrestart
 	mov.b	#1,r0l			; r0l 1: then start the next scan
