@@ -51,26 +51,21 @@ void remote_command(struct rcx *b, u16 bits)
     }
 }
 
-/* A request to transmit: the runtime sends it from its main loop, which the run must return to (rcx.yield). */
-static void request(struct rcx *b, u8 len, u8 pack, u8 mode)
-{
-    b->remote.tx_len = len;
-    b->remote.tx_pack = pack;
-    b->remote.tx_mode = mode;
-    b->yield = 1;
-}
-
 void remote_send_message(struct rcx *b, u8 message)
 {
     b->remote.tx[0] = RCX_OP_MESSAGE;
     b->remote.tx[1] = message;
-    /* A standard packet, as any host sends it, always as F7: receivers never take a message for a repeat
-     * (reference-firmware.md). */
-    request(b, 2, 0x07, 0);
+    b->remote.tx_len = 2;
+    b->remote.tx_pack = 0x07; /* a standard packet, as any host sends it */
+    b->remote.tx_mode = 0; /* always as F7: receivers never take a message for a repeat (reference-firmware.md) */
+    b->yield = 1; /* the runtime's main loop sends it: the run returns to it */
 }
 
 void remote_send_uart(struct rcx *b, u8 start, u8 size)
 {
     memcpy(b->remote.tx, b->uart + start, size); /* copied now: the program may rewrite the buffer before it goes out */
-    request(b, size, (u8)(b->uart[16] & 7u), (u8)(b->uart[17] & 7u));
+    b->remote.tx_len = size;
+    b->remote.tx_pack = (u8)(b->uart[16] & 7u);
+    b->remote.tx_mode = (u8)(b->uart[17] & 7u);
+    b->yield = 1;
 }
