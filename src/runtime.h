@@ -49,7 +49,7 @@ static inline u8 rt_quiet(const struct rcx_brick *k)
 
     /* After rt_run(), an IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays:
      * ir_poll() and ui_poll() did all they could do without the clock. */
-    if (b->runmask || ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
+    if (ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
         return 0;
     return (u8)(9 - b->ms); /* the step's last millisecond is rt_tick()'s */
 }

@@ -18,6 +18,8 @@ extern volatile u16 drv_ad_slot[DRV_AD_SLOTS][DRV_AD_SLOT / 2]; /* ADDRA-ADDRD (
 extern volatile u8 drv_ad_done RCX_EIGHT; /* scans stored, times DRV_AD_SLOT (modulo 256) */
 extern volatile u8 drv_ad_seen RCX_EIGHT; /* scans fed to the runtime, times DRV_AD_SLOT */
 extern volatile u8 drv_ms_ticks RCX_EIGHT; /* counted by the tick interrupt (modulo 256) */
+extern volatile u8 drv_quiet RCX_EIGHT;    /* ticks the tick interrupt lets pass without ending the run */
+extern volatile u8 drv_yield;              /* rcx.yield of the brick (main.c) */
 extern volatile u8 drv_woken RCX_EIGHT;    /* set by an interrupt that left the main loop something to feed: a scan
                                               stored, a byte received (the main loop clears it) */
 void drv_tick_start(u8 irq);        /* FRT: 1 ms period; with irq, the tick interrupt and the A/D cycle run; the

@@ -27,8 +27,8 @@ RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
     hw_motor_set(&drv_motors, port, mode, level); /* the tick interrupt writes the latch within 1 ms */
 }
 
-/* The A/D interrupt applies the mask after each scan; the tick interrupt removes power before the next, and
- * for good once an input is no longer in the mask. */
+/* The A/D interrupt applies the mask after each scan, the tick interrupt removes power before the next while
+ * any input has it; an input no longer in the mask is unpowered here, at once. */
 void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
     u8 bit, power;
@@ -38,9 +38,12 @@ void hal_sensor_power(struct rcx *b, u8 input, u8 on)
         return;
     bit = hw_sensor_power_bit[input];
     power = (u8)(drv_sensor_power & ~bit);
+    h8_irq_disable(); /* P6DR is the interrupts' too */
+    P6DR &= (u8)~bit;
     if (on)
         power |= bit;
     drv_sensor_power = power;
+    h8_irq_enable();
 }
 
 void hal_sound(struct rcx *b, u16 hz)

@@ -41,8 +41,14 @@ _rcx_timer_irq:
 	mov.b	@_drv_ms_ticks:8,r1l
 	inc	r1l
 	mov.b	r1l,@_drv_ms_ticks:8
-	mov.b	#1,r1l
+	mov.b	@_drv_quiet:8,r1l	; quiet milliseconds the main loop lets pass
+	beq	1f
+	dec	r1l
+	mov.b	r1l,@_drv_quiet:8
+	bra	2f
+1:	mov.b	#1,r1l
 	mov.b	r1l,@_drv_yield:16	; rcx.yield: vm_run returns at its next check
+2:
 	sub.b	r1h,r1h
 	mov.b	@_drv_motors+8:16,r1l	; drv_motors.phase, 0-7
 	mov.b	@(_drv_motors,r1),r2l
@@ -50,11 +56,13 @@ _rcx_timer_irq:
 	inc	r1l
 	and.b	#7,r1l
 	mov.b	r1l,@_drv_motors+8:16
-	mov.b	@0xbb:8,r1l		; P6DR: sensors unpowered for the scan, and so they stay if no longer wanted
-	and.b	#0xf8,r1l
-	mov.b	r1l,@0xbb:8
 	mov.b	r0h,r0h
-	bne	.Lrestart		; active sensors: their scan was taken by the A/D interrupt
+	beq	.Lpassive
+	mov.b	@0xbb:8,r1l		; P6DR: active sensors unpowered for the scan (hal_sensor_power unpowers
+	and.b	#0xf8,r1l		; one no longer wanted)
+	mov.b	r1l,@0xbb:8
+	bra	.Lrestart		; their scan was taken by the A/D interrupt
+.Lpassive:
 	btst	#7,r0l			; ADF: the scan started a millisecond ago is complete
 	beq	.Lrestart
 	mov.b	#1,r0l			; r0l 1: then start the next scan
@@ -94,6 +102,7 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_ad_done:8
 	mov.b	#1,r1l
 	mov.b	r1l,@_drv_woken:8	; the main loop has a scan to feed
+	mov.b	r1l,@_drv_yield:16
 .Lstored:
 	mov.b	r0l,r0l
 	bne	.Lrestart

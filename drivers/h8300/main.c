@@ -26,6 +26,7 @@ volatile u8 drv_ms_ticks RCX_EIGHT;
 volatile u8 drv_ad_done RCX_EIGHT;
 volatile u8 drv_ad_seen RCX_EIGHT;
 volatile u8 drv_woken RCX_EIGHT;
+volatile u8 drv_quiet RCX_EIGHT;
 volatile u16 drv_ad_slot[DRV_AD_SLOTS][DRV_AD_SLOT / 2] RCX_ONCHIP;
 struct hw_motors drv_motors RCX_ONCHIP;
 u8 drv_sensor_power RCX_EIGHT;
@@ -157,9 +158,14 @@ static inline void millisecond(void)
     rt_tick(&brick);
 }
 
+static __attribute__((noinline)) u8 quiet_ms(void)
+{
+    return (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
+}
+
 int main(void)
 {
-    u8 seen, i;
+    u8 seen, i, quiet = 0;
 
     /* No code: the arena's size as an absolute symbol, for drivers/size.sh and the free-memory check. */
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
@@ -185,6 +191,14 @@ int main(void)
             sci_service();
         if ((u8)(drv_ms_ticks - seen) > TICKS_BACKLOG)
             seen = (u8)(drv_ms_ticks - TICKS_PER_PASS);
+        /* Quiet milliseconds slept through or run through: all but the last counted at once. */
+        i = (u8)(drv_ms_ticks - seen);
+        if (i > 1) {
+            if (--i > quiet)
+                i = quiet;
+            rt_skip(&brick, i);
+            seen = (u8)(seen + i);
+        }
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
             if (!(u8)(++seen & BATTERY_EVERY))
                 battery_sample();
@@ -194,23 +208,14 @@ int main(void)
         brick.vm.yield = 0;
         if (seen != drv_ms_ticks)
             continue;
-        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
-         * milliseconds (rt_quiet) it sleeps on, as long as no sample or byte comes in, and they are counted at once:
-         * all but the last, which rt_tick() takes as usual. The buttons are looked at then: a press is seen at
-         * most 9 ms later, and the debouncing counts as before from there. */
+        quiet = brick.vm.runmask ? quiet_ms() : 0;
+        drv_quiet = quiet; /* the tick interrupt lets these pass without ending the run */
         if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks) {
-            u8 quiet = (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
-
+            quiet = quiet_ms();
             do
                 h8_sleep();
             while ((u8)(drv_ms_ticks - seen) <= quiet && !drv_woken);
-            i = (u8)(drv_ms_ticks - seen);
-            if (i > 1) {
-                if (--i > quiet)
-                    i = quiet;
-                rt_skip(&brick, i);
-                seen = (u8)(seen + i);
-            }
         }
+        drv_quiet = 0;
     }
 }

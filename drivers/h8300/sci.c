@@ -32,6 +32,7 @@ void rcx_sci_isr(void)
         SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
         hw_rx_put(&drv_rx, t, (u8)((ssr & SCI_SSR_ERRORS) != 0));
         drv_woken = 1;
+        drv_yield = 1;
         return;
     }
     if (!(SCI_SCR & SCI_SCR_TIE)) { /* transmission ended */

@@ -33,6 +33,7 @@
 #define P4DR 0xFFB7
 #define P7PIN 0xFFBE
 #define P6DR 0xFFBB
+#define TMR0_TCR 0xFFC8
 #define LCD_SCL 0x20
 #define LCD_SDA 0x40
 #define SYSCR 0xFFC4
@@ -107,6 +108,10 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
 
     if (a == P6DR)
         lcd_bus(m, was, now);
+    else if (a == TMR0_TCR) {
+        m->tone_tcr = now;
+        m->tone_at = h->states;
+    }
     else if (a == FRT_FRC || a == FRT_FRC + 1)
         m->tick_at = h->states + 32ull * (h8_read16(h, FRT_OCR) + 1u); /* φ/32, cleared at the match */
     else if (a == AD_ADCSR)
@@ -118,6 +123,16 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
         ssr_read = 0;
         if ((was & TDRE) && !(now & TDRE) && !m->tx_at)
             tx_start(m); /* TDR written: into the shift register at once when it is free */
+    }
+}
+
+/* Every write to F000-FB7F or FF80-FF87 reaches the motor latch (rcx-hardware.md §3.2). */
+static void latch_write(struct h8 *h, uint8_t v)
+{
+    struct h8machine *m = self;
+    if (v != m->latch) {
+        m->latch = v;
+        m->latch_at = h->states;
     }
 }
 
@@ -464,6 +479,7 @@ int h8m_boot(struct h8machine *m, const char *image, const char *nm)
     m->ad_raw[3] = 300;                /* 8.4 V */
     m->h.io_read = io_read;
     m->h.io_write = io_write;
+    m->h.latch_write = latch_write;
     m->h.may_sleep = 1;
     m->h.states = 0;
     return 0;

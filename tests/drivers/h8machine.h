@@ -54,6 +54,10 @@ struct h8machine {
     unsigned long long settle_at;           /* the end of the oscillator's settling once woken, 0 before */
     unsigned standbys;                      /* software standbys entered */
     unsigned long long standby_states;      /* states spent in standby, settling included */
+    uint8_t tone_tcr;                       /* the last value written to TMR0's TCR (0: no tone) ... */
+    unsigned long long tone_at;             /* ... and when */
+    uint8_t latch;                          /* the motor latch as last written ... */
+    unsigned long long latch_at;            /* ... and when it last changed */
     uint8_t lcd[H8M_LCD];                   /* the last complete frame on the LCD bus (START to STOP) */
     unsigned lcd_len, lcd_frames;
     uint8_t lcd_rx[H8M_LCD];                /* the frame being sent */

@@ -160,6 +160,81 @@ static void rotation_counts_every_millisecond_on_an_idle_brick(void **state)
     rotation_counts_every_millisecond(0);
 }
 
+/*
+ * While a task spins and nothing else is going on, the main loop lets the quiet milliseconds of each 10 ms step
+ * pass without ending the run (drv_quiet). What a task starts meanwhile that the clock must see at once ends it:
+ * task 0 below, after its Wait (by then the IR link is quiet), turns output A on and then plays a tone, reverses
+ * A (a 60 ms pause, braked), and sends an IR message, while task 1 spins. Each takes effect as promptly as the
+ * output does, whose latch pattern the tick interrupt writes every millisecond regardless.
+ */
+static void task_with_spinner(const uint8_t *code, unsigned n)
+{
+    static const uint8_t start[2] = { 0x71, 0 }, start1[2] = { 0x71, 1 };
+    assert_int_equal(h8m_download_task(&m, 1, busy, sizeof busy), 0);
+    assert_int_equal(h8m_download_task(&m, 0, code, n), 0);
+    assert_int_equal(h8m_transact(&m, start1, 2, NULL, 1, NULL), 0);
+    assert_int_equal(h8m_transact(&m, start, 2, NULL, 1, NULL), 0);
+}
+
+static void a_tone_a_task_plays_while_another_spins_starts_at_once(void **state)
+{
+    static const uint8_t code[] = { 0x43, 2, 50, 0,             /* Wait 500 ms */
+                                    0x21, 0x81,                 /* A on */
+                                    0x23, 0xB8, 0x01, 5,        /* PlayTone 440 Hz, 50 ms */
+                                    0x24, 0x01, 0x02, 0x01, 0x00, 0x27, 0x86 };
+    unsigned long long on;
+    (void)state;
+    task_with_spinner(code, sizeof code);
+    m.latch_at = 0;
+    while (!m.latch_at)
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_MS), 0);
+    on = m.latch_at;
+    assert_int_equal(h8m_run(&m, on + 5 * H8M_MS), 0);
+    assert_true(m.tone_tcr != 0);                /* playing ... */
+    assert_true(m.tone_at + 2 * H8M_MS > on && m.tone_at < on + 2 * H8M_MS); /* ... since about when A went on */
+}
+
+static void a_reversal_a_task_makes_while_another_spins_pauses_60_ms(void **state)
+{
+    static const uint8_t code[] = { 0xE1, 0x81, 0x21, 0x81,     /* A forward, on */
+                                    0x43, 2, 50, 0,             /* Wait 500 ms */
+                                    0xE1, 0x41,                 /* A reversed: braked for 60 ms, then reverse */
+                                    0x24, 0x01, 0x02, 0x01, 0x00, 0x27, 0x86 };
+    unsigned long long braked;
+    uint8_t forward;
+    (void)state;
+    task_with_spinner(code, sizeof code);
+    assert_int_equal(h8m_run(&m, m.h.states + 100 * H8M_MS), 0);
+    forward = m.latch;
+    while (m.latch == forward)
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_MS / 4), 0);
+    braked = m.latch_at;
+    while (m.latch_at == braked)
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_MS / 4), 0);
+    /* 60 milliseconds counted from the one after the reversal, the latch written at each tick: 59-61 ms, 58-62
+     * with the cost model's slack; counted from the next 10 ms step's end instead, it would be up to 69 ms. */
+    assert_true(m.latch_at - braked >= 58 * H8M_MS && m.latch_at - braked <= 62 * H8M_MS);
+}
+
+static void a_message_a_task_sends_while_another_spins_goes_out_at_once(void **state)
+{
+    static const uint8_t code[] = { 0x43, 2, 50, 0,             /* Wait 500 ms */
+                                    0x21, 0x81,                 /* A on */
+                                    0xB2, 0x02, 0x07,           /* SendPBMessage 7 */
+                                    0x24, 0x01, 0x02, 0x01, 0x00, 0x27, 0x86 };
+    unsigned from;
+    (void)state;
+    task_with_spinner(code, sizeof code);
+    m.latch_at = 0;
+    from = m.nsent;
+    while (!m.latch_at)
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_MS), 0);
+    assert_int_equal(h8m_run(&m, m.latch_at + 40 * H8M_MS), 0);
+    assert_true(m.nsent > from);
+    assert_int_equal(m.sent[from + 3], 0xF7);
+    assert_true(m.sent_at[from] + 2 * H8M_MS > m.latch_at && m.sent_at[from] < m.latch_at + 2 * H8M_MS);
+}
+
 static void idle_brick_sleeps_between_ticks(void **state)
 {
     unsigned long long t0 = m.h.states, s0 = m.slept;
@@ -181,6 +256,9 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(lone_task_runs_at_full_speed, boot),
         cmocka_unit_test_setup(one_busy_task_leaves_commands_answered, boot),
         cmocka_unit_test_setup(ten_busy_tasks_leave_commands_answered, boot),
+        cmocka_unit_test_setup(a_tone_a_task_plays_while_another_spins_starts_at_once, boot),
+        cmocka_unit_test_setup(a_reversal_a_task_makes_while_another_spins_pauses_60_ms, boot),
+        cmocka_unit_test_setup(a_message_a_task_sends_while_another_spins_goes_out_at_once, boot),
         cmocka_unit_test_setup(rotation_counts_every_millisecond_while_tasks_spin, boot),
         cmocka_unit_test_setup(rotation_counts_every_millisecond_on_an_idle_brick, boot),
     };
