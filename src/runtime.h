@@ -34,21 +34,23 @@ static inline void rt_tick(struct rcx_brick *k)
 }
 
 /*
- * Quiet milliseconds, for a port that sleeps between ticks: while no task runs, no IR exchange, sound or reversing
- * pause is in progress and the power-down timer need not start again, a millisecond that does not end a 10 ms step
- * only counts. rt_quiet() tells how many of the next milliseconds are such (0: the next is not), right
- * after rt_run(); rt_skip(k, n), n no more than that, does what n calls of rt_tick() would, except that a minute of
- * the watch or of the power-down timer that ends in them is seen at the next rt_tick(). rt_run() is not called for
- * them: it would have nothing to do, but for a PBTurnOff that a task ended with, carried out up to 8 ms later. The
- * inputs must be as quiet: the port stops skipping once a sample or a byte is there to feed.
- * tests/unit/test_quiet_ms.c holds a skipping brick to one that ticks every millisecond.
+ * Quiet milliseconds, for a port that would rather not work through every tick: while no IR exchange, sound or
+ * reversing pause is in progress and the power-down timer need not start again, a millisecond that does not end a
+ * 10 ms step only counts. rt_quiet() tells how many of the next milliseconds are such (0: the next is not);
+ * rt_skip(k, n), n no more than that, does what n calls of rt_tick() would, except that a minute of the watch or of
+ * the power-down timer that ends in them is seen at the next rt_tick(). Meanwhile the port either sleeps, when no
+ * task runs (rt_run() would have nothing to do, but for a PBTurnOff that a task ended with, carried out up to 9 ms
+ * later), or lets the tasks run on, as long as they start nothing that needs the clock (a note, a reversing pause, a
+ * transmission: vm_sounding(), vm_pausing(), remote.tx_len), then counts the milliseconds. The inputs must be
+ * as quiet: the port stops skipping once a sample or a byte is there to feed. tests/unit/test_quiet_ms.c holds a
+ * skipping brick to one that ticks every millisecond.
  */
 static inline u8 rt_quiet(const struct rcx_brick *k)
 {
     const struct rcx *b = &k->vm;
 
-    /* After rt_run(), an IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays:
-     * ir_poll() and ui_poll() did all they could do without the clock. */
+    /* An IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays: ir_poll() and
+     * ui_poll() do all they can without the clock. */
     if (ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
         return 0;
     return (u8)(9 - b->ms); /* the step's last millisecond is rt_tick()'s */

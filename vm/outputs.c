@@ -75,7 +75,6 @@ static void apply(struct rcx *b, u8 i)
         *pause = 0;
     } else if (!((u8)~(now ^ want) & 3) && DRIVEN(now)) { /* driven one way, now wanted the other */
         *pause = OUTPUTS_REVERSE_PAUSE_MS;
-        b->yield = 1; /* the clock must count the pause from now on (rt_quiet) */
         want = APPLIED(HAL_MOTOR_BRAKE, 7);
     }
     if (want != now) {

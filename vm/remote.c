@@ -58,7 +58,6 @@ void remote_send_message(struct rcx *b, u8 message)
     b->remote.tx_len = 2;
     b->remote.tx_pack = 0x07; /* a standard packet, as any host sends it */
     b->remote.tx_mode = 0; /* always as F7: receivers never take a message for a repeat (reference-firmware.md) */
-    b->yield = 1; /* the runtime's main loop sends it: the run returns to it */
 }
 
 void remote_send_uart(struct rcx *b, u8 start, u8 size)
@@ -67,5 +66,4 @@ void remote_send_uart(struct rcx *b, u8 start, u8 size)
     b->remote.tx_len = size;
     b->remote.tx_pack = (u8)(b->uart[16] & 7u);
     b->remote.tx_mode = (u8)(b->uart[17] & 7u);
-    b->yield = 1;
 }

@@ -50,7 +50,6 @@ static void enqueue(struct rcx *b, u16 hz, u8 len)
         e->hz = hz;
         e->len = len;
         s->count = (u8)(n + 1);
-        b->yield = 1; /* the clock must tick it from now on (src/runtime.h, rt_quiet) */
     }
 }
 

@@ -182,8 +182,12 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             return;
         }
         if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
-            if (value <= 0xFF) /* one call through a pointer is shorter than two calls */
-                (src == RCX_SRC_SENSOR_TYPE ? sensor_set_type : sensor_set_mode)(b, (u8)index, (u8)value);
+            if (value <= 0xFF) {
+                if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
+                    sensor_set_type(b, (u8)index, (u8)value);
+                else
+                    sensor_set_mode(b, (u8)index, (u8)value);
+            }
             return;
         }
         if (src == RCX_SRC_TIMER10)

@@ -41,8 +41,18 @@ _rcx_timer_irq:
 	mov.b	@_drv_ms_ticks:8,r1l
 	inc	r1l
 	mov.b	r1l,@_drv_ms_ticks:8
-	mov.b	@_drv_quiet:8,r1l	; quiet milliseconds the main loop lets pass
+	mov.b	@_drv_quiet:8,r1l	; quiet milliseconds the main loop lets the tasks run through ...
 	beq	1f
+	mov.b	@_drv_sound_count:16,r2l ; ... unless they started what needs the clock: a note, a reversing
+	mov.b	@_drv_pause:16,r2h	; pause, a transmission (src/runtime.h)
+	or.b	r2h,r2l
+	mov.b	@_drv_pause+1:16,r2h
+	or.b	r2h,r2l
+	mov.b	@_drv_pause+2:16,r2h
+	or.b	r2h,r2l
+	mov.b	@_drv_tx_len:16,r2h
+	or.b	r2h,r2l
+	bne	1f
 	dec	r1l
 	mov.b	r1l,@_drv_quiet:8
 	bra	2f

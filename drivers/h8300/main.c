@@ -42,6 +42,8 @@ int main(void);
 /* What irq.s takes for granted. */
 RCX_STATIC_ASSERT(slots_in_a_byte, DRV_AD_SLOTS * DRV_AD_SLOT == 0x20 && DRV_AD_SLOT == 8);
 RCX_STATIC_ASSERT(phase_after_the_pattern, offsetof(struct hw_motors, phase) == 8);
+RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound.count) == 1 &&
+                  sizeof(((struct rcx *)0)->out.pause) == 3 && sizeof(((struct rcx *)0)->remote.tx_len) == 1);
 
 #define BUTTON_PINS() ((u8)((P4DR & 0x06) | (P7PIN & 0xC0))) /* On-Off, Run; View, Prgm (hw_buttons) */
 
@@ -158,6 +160,8 @@ static inline void millisecond(void)
     rt_tick(&brick);
 }
 
+/* rt_quiet(), unless the buttons or a transmission of another mode want the milliseconds. Out of line: the main loop
+ * asks twice. */
 static __attribute__((noinline)) u8 quiet_ms(void)
 {
     return (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
@@ -175,6 +179,12 @@ int main(void)
     __asm__ __volatile__(".global\t_drv_yield\n\t.set\t_drv_yield, _brick+%c0" ::"i"(offsetof(struct rcx_brick, vm.yield)));
     __asm__ __volatile__(".global\t_drv_sensors_rest\n\t.set\t_drv_sensors_rest, _brick+%c0"
                          ::"i"(offsetof(struct rcx_brick, vm.sensors_rest)));
+    /* What the tick interrupt looks at while the tasks run through quiet milliseconds. */
+    __asm__ __volatile__(".global\t_drv_sound_count\n\t.set\t_drv_sound_count, _brick+%c0\n\t"
+                         ".global\t_drv_pause\n\t.set\t_drv_pause, _brick+%c1\n\t"
+                         ".global\t_drv_tx_len\n\t.set\t_drv_tx_len, _brick+%c2"
+                         ::"i"(offsetof(struct rcx_brick, vm.sound.count)), "i"(offsetof(struct rcx_brick, vm.out.pause)),
+                         "i"(offsetof(struct rcx_brick, vm.remote.tx_len)));
     RCX_RAMVEC(RCX_VEC_OCIA) = (u16)(unsigned)rcx_timer_irq;
     RCX_RAMVEC(RCX_VEC_ADI) = (u16)(unsigned)rcx_timer_irq;
     drv_outputs_on();
@@ -208,8 +218,15 @@ int main(void)
         brick.vm.yield = 0;
         if (seen != drv_ms_ticks)
             continue;
+        /* Tasks run on through quiet milliseconds: the tick interrupt lets that many pass without ending the run
+         * (rcx.yield) as long as they start nothing that needs the clock (irq.s), and an interrupt that leaves
+         * work ends it. */
         quiet = brick.vm.runmask ? quiet_ms() : 0;
-        drv_quiet = quiet; /* the tick interrupt lets these pass without ending the run */
+        drv_quiet = quiet;
+        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
+         * milliseconds it sleeps on, as long as no sample or byte comes in. In both cases the milliseconds are
+         * counted at once above, all but the last, which rt_tick() takes as usual. The buttons are looked at then:
+         * a press is seen at most 9 ms later, and the debouncing counts as before from there. */
         if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks) {
             quiet = quiet_ms();
             do

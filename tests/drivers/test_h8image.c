@@ -343,11 +343,12 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     (void)state;
     h8_run(&h, "_hw_motor_set", var("_drv_motors"), 0, HAL_MOTOR_FWD, level, 1); /* A forward, full power */
 
-    /* Passive inputs: the tick reads the scan that ran since the last one and starts the next. */
+    /* Passive inputs: the tick reads the scan that ran since the last one and starts the next. Port 6 is left as
+     * it is: an input that no longer wants power lost it when it left the mask (hal_sensor_power, below). */
     scan_results(10);
     h.mem[FRT_TCSR] = 0x09; /* OCFA, CCLRA */
     h.mem[AD_ADCSR] = 0xB3; /* ADF, ADST, SCAN, AN0-AN3 */
-    h.mem[P6DR] = 0x6F;
+    h.mem[P6DR] = 0x68;
     h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
     assert_int_equal(h.mem[FRT_TCSR], 0x01);
     assert_int_equal(h.mem[ticks], 1);
@@ -397,6 +398,22 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     assert_int_equal(h.mem[ticks], 4);
     assert_int_equal(h.mem[AD_ADCSR], 0x73);
     assert_int_equal(h.mem[P6DR], 0x68);
+}
+
+/* An input that leaves the mask of powered inputs is unpowered at once, the others keep what they have; one that
+ * joins it is powered by the A/D interrupt after the next scan. */
+static void sensor_power_leaves_with_the_input(void **state)
+{
+    uint16_t power = var("_drv_sensor_power");
+    (void)state;
+    h.mem[power] = 0x05; /* inputs 1 and 3 (P6.2, P6.0) */
+    h.mem[P6DR] = 0x6D;
+    h8_run(&h, "_hal_sensor_power", 0, 0, 0, NULL, 0); /* input 1 passive */
+    assert_int_equal(h.mem[power], 0x01);
+    assert_int_equal(h.mem[P6DR], 0x69);
+    h8_run(&h, "_hal_sensor_power", 0, 1, 1, NULL, 0); /* input 2 active */
+    assert_int_equal(h.mem[power], 0x03);
+    assert_int_equal(h.mem[P6DR], 0x69);
 }
 
 /* A scan equal to the one before is not stored while the main loop has fed every scan and the runtime says that
@@ -687,6 +704,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(sci_interrupt_receives_bytes_and_errors, load),
         cmocka_unit_test_setup(sci_interrupt_transmits_then_waits_for_the_end, load),
         cmocka_unit_test_setup(timer_interrupt_drives_motors_and_the_scan, load),
+        cmocka_unit_test_setup(sensor_power_leaves_with_the_input, load),
         cmocka_unit_test_setup(timer_interrupt_leaves_out_scans_at_rest, load),
         cmocka_unit_test(hand_back_leaves_registers_as_after_reset),
     };
