@@ -34,7 +34,8 @@ static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
  *   2-3   forward, unsigned 8 or 16 bits
  *   4-11  sign-magnitude: 7 bits (+ 8 more in a second byte), bit 7 of the first byte = backwards
  */
-#define OUTSIDE 0xFFFFu /* larger than any code object */
+#define OUTSIDE 0xFFFFu /* negative as an s16, unlike any offset in a code object: the one test for "outside" */
+RCX_STATIC_ASSERT(offsets_positive, RCX_ARENA_SIZE < 0x8000u);
 #define NOT_AN_OP 0x08 /* has the toggle bit: no opcode reaches the search with it */
 static const u8 control[] = {
     RCX_OP_SCHECK_DO, RCX_OP_LCHECK_DO,
@@ -80,33 +81,37 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     ins = b->arena + at[0] + pc;
     op = (u8)(ins[0] & ~RCX_TOGGLE);
     flags = rcx_opflags[rcx_op_index(op)];
-    len = flags ? (u8)(flags & 7) : rcx_op_nominal_params(op); /* as rcx_op_params() */
+    len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
+    if (!flags && len >= 6)
+        len = (u8)(len - 6);
     if ((u16)(size - pc) <= len)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
 
     i = sizeof control;                /* the byte codes shared with direct commands are none of these */
-    if (((flags >> 3) & 3) == RCX_PROGRAM)
+    if (!((flags ^ (RCX_PROGRAM << 3)) & (3 << 3))) /* program-only: bits 3-4 of the flags, in place */
         for (i = 0; i < sizeof control && control[i] != op; i++)
             ;
     if (i < C_SET_LOOP) {
+        /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
+         * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
+         * (none reaches 0x10000). Only CheckLoop's unsigned 16 bits could wrap around into the code: capped. */
         u8 field = dist_at[i >> 1];
         const u8 *p = ins + field;
-        u16 d = p[0], from = (u16)(pc + field);
-        u8 back = 0;
+        u16 d = p[0];
+        pc = (u16)(pc + field);        /* from here: the offset the distance counts from */
         if (i & 1)
             d |= (u16)p[1] << 8;
         if (i >= C_JUMP) {             /* sign-magnitude; the short form has nothing above bit 7 */
-            back = (u8)(d & 0x80);
             d = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
-        } else if (i == C_CHECK_DO + 1 && (d & 0x8000)) {
-            back = 1;
-            d = (u16)(0u - d);
+            if (p[0] & 0x80)
+                d = (u16)(0u - d);
+        } else if (i == C_CHECK_LOOP + 1 && (d & 0x8000)) {
+            d = 0x8000u;
         }
-        if (back)
-            to = d > from ? OUTSIDE : (u16)(from - d);
-        else
-            to = d > (u16)(size - from) ? OUTSIDE : (u16)(from + d);
+        to = (u16)(pc + d);
+        if (to > size)
+            to = OUTSIDE;
     }
 
     switch (i) {
@@ -124,7 +129,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     case C_ENTER:
     case C_ENTER + 1:
     case C_ACCESS:
-        if (to > size)
+        if ((s16)to < 0)
             goto stop;
         if (i == C_ACCESS)
             access_enter(b, t, ins[1], to);
@@ -145,9 +150,14 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     case C_CHECK_DO:
     case C_CHECK_DO + 1: {
         s16 a;
+        u8 holds = 4;
         value = source_get(b, t, ins[2] & 0x3F, ins[5]);
         a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
-        jump = !(relation[ins[1] >> 6] & (a < value ? 1 : a == value ? 2 : 4));
+        if (a < value)
+            holds = 1;
+        else if (a == value)
+            holds = 2;
+        jump = !(relation[(u8)(ins[1] >> 6)] & holds);
         break;
     }
     case C_SET_LOOP:
@@ -178,9 +188,8 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             break;                     /* negative: ignored (spec p. 67); zero: no wait */
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */
         t->wake = (u16)(b->ticks10 + (u16)value);
-        t->state = RCX_TASK_WAITING;
         b->waiting = 1;
-        b->runmask &= (u16)~(1u << n);
+        sched_set_state(b, t, RCX_TASK_WAITING);
         break;
     case C_EXIT_EVENT:
         events_monitor_exit(b, t);
@@ -197,7 +206,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
 
     if (!jump)
         return;
-    if (to <= size) {
+    if ((s16)to >= 0) {
         t->pc = to;
         return;
     }                                  /* a jump outside the code object */

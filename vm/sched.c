@@ -18,8 +18,7 @@ void sched_start_task(struct rcx *b, u8 n)
     t->has_ret = 0;
     t->loop_depth = 0;
     t->ev.events = 0;
-    t->state = RCX_TASK_RUNNING;
-    b->runmask |= (u16)(1u << n);
+    sched_set_state(b, t, RCX_TASK_RUNNING);
 }
 
 void sched_stop_task(struct rcx *b, u8 n)
@@ -28,9 +27,24 @@ void sched_stop_task(struct rcx *b, u8 n)
 
     if (n >= RCX_TASKS || (t = &b->task[n])->state == RCX_TASK_IDLE)
         return;
-    b->runmask &= (u16)~(1u << n);
-    t->state = RCX_TASK_IDLE;
+    sched_set_state(b, t, RCX_TASK_IDLE);
     events_task_ended(b, t);
+}
+
+/* One place keeps runmask in step with the states (a shift by a variable count is a loop on the H8/300: written
+ * once). */
+void sched_set_state(struct rcx *b, struct rcx_task *t, u8 state)
+{
+    const struct rcx_task *u;
+    u16 bit = 1, mask;
+
+    for (u = b->task; u != t; u++)
+        bit <<= 1;
+    t->state = state;
+    mask = (u16)(b->runmask & ~bit);
+    if (state == RCX_TASK_RUNNING)
+        mask |= bit;
+    b->runmask = mask;
 }
 
 void sched_stop_all(struct rcx *b)

@@ -23,8 +23,7 @@ static void wake_waiting(struct rcx *b)
         struct rcx_task *t = &b->task[n];
         if (t->state == RCX_TASK_WAITING) {
             if ((s16)(u16)(b->ticks10 - t->wake) >= 0) {
-                t->state = RCX_TASK_RUNNING;
-                b->runmask |= (u16)(1u << n);
+                sched_set_state(b, t, RCX_TASK_RUNNING);
             } else {
                 still = 1;
             }
