@@ -134,7 +134,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         if (i == C_ACCESS)
             access_enter(b, t, ins[1], to);
         else
-            events_monitor_enter(b, t, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2)), to);
+            events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
         break;
     case C_CHECK_LOOP:
     case C_CHECK_LOOP + 1:
@@ -163,7 +163,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     case C_SET_LOOP:
         /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
         if (t->loop_depth < RCX_LOOP_LEVELS) {
-            value = source_get(b, t, ins[1], ins[2]);
+            value = ops_source8(b, t, ins);
             t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
         }
         break;
@@ -183,7 +183,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             break;
         goto stop;
     case C_WAIT:
-        value = source_get(b, t, ins[1], RCX_LE16(ins + 2));
+        value = ops_source(b, t, ins);
         if (value <= 0)
             break;                     /* negative: ignored (spec p. 67); zero: no wait */
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */

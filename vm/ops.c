@@ -6,11 +6,11 @@
 #include "rcx.h"
 #include "sources.h"
 
-/* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `op` is one of
- * SetVar..OrVar (0x14-0x94): its high nibble alone tells them apart, a dense switch. */
-static s16 arith(u8 op, s16 a, s16 v)
+/* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `kind` is the
+ * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart: a dense switch. */
+static s16 arith(u8 kind, s16 a, s16 v)
 {
-    switch (op >> 4) {
+    switch (kind) {
     case RCX_OP_SET_VAR >> 4: return v;
     case RCX_OP_SUM_VAR >> 4: return (s16)(u16)((u16)a + (u16)v);
     case RCX_OP_SUB_VAR >> 4: return (s16)(u16)((u16)a - (u16)v);
@@ -52,29 +52,40 @@ RCX_STATIC_ASSERT(motor_ops, !IS_DIRECTION(RCX_OP_ON_OFF_FLOAT) && !IS_GLOBAL(RC
 
 static void set_motors(struct rcx *b, const u8 *ins)
 {
-    u8 op = ins[0], arg = ins[1];
+    u8 op = ins[0], arg = ins[1], verb = (u8)(arg >> 6);
 
-    outputs_update(b, (u8)((arg & 0x07) | (IS_GLOBAL(op) ? OUTPUTS_GLOBAL : 0)),
-                   verbs[(IS_DIRECTION(op) ? 4 : 0) + (arg >> 6)]);
+    if (IS_DIRECTION(op))
+        verb += 4;
+    outputs_update(b, (u8)((arg & 0x07) | (IS_GLOBAL(op) ? OUTPUTS_GLOBAL : 0)), verbs[verb]);
 }
 
 /* SetPower, SetMaxPower (0xA3: global): 0-7 */
 RCX_STATIC_ASSERT(power_ops, !(RCX_OP_SET_POWER & 0x80) && (RCX_OP_SET_MAX_POWER & 0x80));
 static void set_power(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
-    s16 power = source_get(b, t, ins[2], ins[3]);
+    s16 power = ops_source8(b, t, ins + 1); /* the source one byte on */
 
     if (power >= 0 && power <= 7)
         outputs_update(b, (u8)((ins[1] & 0x07) | (ins[0] & 0x80 ? OUTPUTS_GLOBAL : 0)),
                        OUTPUTS_CHANGE(RCX_MOTOR_POWER, power));
 }
 
+s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins)
+{
+    return source_get(b, t, ins[1], RCX_LE16(ins + 2));
+}
+
+s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins)
+{
+    return source_get(b, t, ins[1], ins[2]);
+}
+
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
-    s16 value = source_get(b, t, ins[2], RCX_LE16(ins + 3));
+    s16 value = ops_source(b, t, ins + 1); /* the source one byte on */
     s16 *var = var_ref(b, t, ins[1]);
     if (var)
-        *var = arith((u8)(ins[0] & ~RCX_TOGGLE), *var, value);
+        *var = arith((u8)(ins[0] >> 4), *var, value); /* the toggle bit is bit 3 */
 }
 
 /*
@@ -104,7 +115,8 @@ static void set_message(struct rcx *b, u8 m)
 }
 OP(op_clear_message) { UNUSED_T; UNUSED_INS; set_message(b, 0); }
 OP(op_message) { UNUSED_T; set_message(b, ins[1]); }
-OP(op_mute) { UNUSED_T; sound_mute(b, (u8)((ins[0] & ~RCX_TOGGLE) == RCX_OP_MUTE)); }
+RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
+OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
 OP(op_clear_events) { UNUSED_T; UNUSED_INS; events_clear_all(b); }
 OP(op_motors) { UNUSED_T; set_motors(b, ins); }
 OP(op_tx_power)
@@ -145,13 +157,15 @@ OP(op_clear_sensor) { UNUSED_T; sensor_clear(b, ins[1]); }
 OP(op_counter)
 {
     u8 n = ins[1], op = (u8)(ins[0] & ~RCX_TOGGLE);
+    s16 *c;
     UNUSED_T;
     if (n >= RCX_COUNTERS)
         return;
+    c = &b->global[n];
     if (op == RCX_OP_CLEAR_COUNTER)
-        b->global[n] = 0;
+        *c = 0;
     else
-        b->global[n] = (s16)(u16)((u16)b->global[n] + (op == RCX_OP_INC_COUNTER ? 1u : 0xFFFFu));
+        *c = (s16)(u16)((u16)*c + (op == RCX_OP_INC_COUNTER ? 1u : 0xFFFFu));
     events_counter_changed(b, n);
 }
 OP(op_watch)
@@ -169,14 +183,15 @@ OP(op_datalog) { UNUSED_T; datalog_set(b, RCX_LE16(ins + 1)); }
 OP(op_log) { datalog_add(b, t, ins[1], ins[2]); }
 OP(op_uart)
 {
+    u8 start = ins[1], size = ins[2];
     UNUSED_T;
-    if ((u16)ins[1] + ins[2] <= 16) /* start + size <= 16 (spec p. 60) */
-        remote_send_uart(b, ins[1], ins[2]);
+    if (size <= 16 && start <= (u8)(16 - size)) /* start + size <= 16 (spec p. 60), in bytes */
+        remote_send_uart(b, start, size);
 }
-OP(op_event) { events_raise(b, (u16)source_get(b, t, ins[1], RCX_LE16(ins + 2))); }
+OP(op_event) { events_raise(b, (u16)ops_source(b, t, ins)); }
 OP(op_view)
 {
-    s16 value = source_get(b, t, ins[1], RCX_LE16(ins + 2));
+    s16 value = ops_source(b, t, ins);
     if (value >= 0 && value <= 7)
         display_view(b, (u8)value);
 }
@@ -209,7 +224,7 @@ OP(op_priority)
 OP(op_send_message)
 {
     if (t)
-        remote_send_message(b, (u8)source_get(b, t, ins[1], ins[2]));
+        remote_send_message(b, (u8)ops_source8(b, t, ins));
 }
 
 /* Opcodes and their handlers, in two parallel arrays (3 bytes a row on the brick). */

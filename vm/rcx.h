@@ -156,5 +156,8 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes
 /* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
+/* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */
+s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
+s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
 
 #endif
