@@ -151,17 +151,18 @@ static void compose(struct rcx *b)
         places1 = 1;
     } else {
         /* Reading the random source would advance the program's random sequence at every refresh. */
-        v = b->display.user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, b->display.user_source, b->display.user_index);
+        v = b->display.user_source == RCX_SRC_RANDOM ? 0
+                                                    : source_get(b, NULL, b->display.user_source, b->display.user_index);
         places1 = (u8)(b->display.user_precision + 1);
     }
     i = (u8)(b->prog + 1);
     if (v != b->display.digits_v || places1 != b->display.digits_places1 || i != b->display.digits_prog1) {
-        memset(work, 0, DISPLAY_BYTES);
         b->display.digits_v = v;
         b->display.digits_places1 = places1;
         b->display.digits_prog1 = i;
+        memset(work, 0, DISPLAY_BYTES);
         digit(0, i);
-        number(v, places1);
+        number(v, b->display.digits_places1); /* read back: kept across the calls it would cost a spill */
         memcpy(b->display.digits, work, DISPLAY_BYTES);
     }
     for (i = 0; i < DISPLAY_BYTES; i++)
@@ -173,9 +174,10 @@ static void compose(struct rcx *b)
         work[0] |= FIGURE_STANDING;
     if (b->display.ir)
         lit(DISPLAY_MARK_IR_LOW);
-    for (i = 0; i < RCX_SENSORS; i++) {
+    for (i = 0; i < RCX_SENSORS; i++)
         if (b->sensor[i].boolean)
             mark(INPUT_PRESSED + i);
+    for (i = 0; i < RCX_MOTORS; i++) {
         mode = outputs_mode(b, i);
         mark((u8)(OUTPUT_MODE + mode * 3 + i));
     }
