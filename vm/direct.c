@@ -24,10 +24,16 @@ static const u8 direct_ops[] = {
 
 enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
 
-/* A task leaves a subroutine's code for good when it is stopped; tasks inside it are stopped first. */
-static void stop_tasks_in_sub(struct rcx *b, u8 sub)
+/* Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
+ * leaves a subroutine's code for good when it is stopped). */
+static void stop_users(struct rcx *b, u8 is_task, u8 sub)
 {
     u8 n;
+
+    if (is_task) {
+        sched_stop_task(b, sub);
+        return;
+    }
     for (n = 0; n < RCX_TASKS; n++) {
         struct rcx_task *t = &b->task[n];
         if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB && (t->sub == sub || (t->has_ret && t->ret_sub == sub)))
@@ -55,10 +61,7 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
     if (size > mem_free(b) && (u16)(size - mem_free(b)) > mem_obj_size(b, obj))
         return DL_NO_MEMORY;       /* refused: the old code stays as it was */
-    if (is_task)
-        sched_stop_task(b, n);
-    else
-        stop_tasks_in_sub(b, n);
+    stop_users(b, is_task, n);
     mem_resize(b, obj, 0);
     mem_resize(b, obj, size);      /* cannot fail: checked above */
     b->dl.active = 1;
@@ -139,10 +142,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
         u8 first = (op & 7) ? cmd[1] : 0, last = (op & 7) ? (u8)(cmd[1] + 1) : limit;
         for (i = first; i < last && i < limit; i++) {
-            if (tasks)
-                sched_stop_task(b, i);
-            else
-                stop_tasks_in_sub(b, i);
+            stop_users(b, tasks, i);
             delete_obj(b, tasks ? rcx_obj_task(b->prog, i) : rcx_obj_sub(b->prog, i));
         }
         break;
