@@ -140,8 +140,13 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
         u8 tasks = c <= D_DELETE_TASK;
         u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
-        u8 first = (op & 7) ? cmd[1] : 0, last = (op & 7) ? (u8)(cmd[1] + 1) : limit;
-        for (i = first; i < last && i < limit; i++) {
+        i = 0;
+        if (op & 7) {              /* one of them: nothing when out of range */
+            i = cmd[1];
+            if (i < limit)
+                limit = (u8)(i + 1);
+        }
+        for (; i < limit; i++) {
             stop_users(b, tasks, i);
             delete_obj(b, tasks ? rcx_obj_task(b->prog, i) : rcx_obj_sub(b->prog, i));
         }
