@@ -99,14 +99,18 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     return DL_OK;
 }
 
+/*
+ * addr is at least 0x8000 and addr + count does not pass 0xFFFF (vm_direct checks), so a byte below the arena is at
+ * most 0x7FFF below it: its offset wraps to 0x8001 or more, past the arena like the bytes above it.
+ */
+RCX_STATIC_ASSERT(arena_offsets_wrap_past_it, RCX_ARENA_SIZE <= 0x8001u);
 static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 {
+    u16 off = (u16)(addr - b->arena_addr);
     u8 i;
-    for (i = 0; i < count; i++) {
-        u16 a = (u16)(addr + i);
-        u16 off = (u16)(a - b->arena_addr);
-        out[i] = (a >= b->arena_addr && off < RCX_ARENA_SIZE) ? b->arena[off] : 0;
-    }
+
+    for (i = 0; i < count; i++, off++)
+        out[i] = off < RCX_ARENA_SIZE ? b->arena[off] : 0;
     return count;
 }
 
