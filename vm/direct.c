@@ -51,6 +51,7 @@ static void delete_obj(struct rcx *b, u8 obj)
 static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
 {
     u8 obj;
+    u16 room;
 
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
@@ -59,7 +60,8 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
         return DL_BAD_NUMBER;
     obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
-    if (size > mem_free(b) && (u16)(size - mem_free(b)) > mem_obj_size(b, obj))
+    room = mem_free(b);
+    if (size > room && (u16)(size - room) > mem_obj_size(b, obj))
         return DL_NO_MEMORY;       /* refused: the old code stays as it was */
     stop_users(b, is_task, n);
     mem_resize(b, obj, 0);
@@ -84,10 +86,14 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
         sum = (u8)(sum + cmd[5 + i]);
     if (sum != cmd[5 + count])
         return DL_BLOCK_ERROR;
-    if (seq != 0 && seq == b->dl.last)
-        return DL_OK;              /* a repeated block is acknowledged again, not written twice */
-    if ((seq != 0 && seq != b->dl.expect) || count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
-        return DL_BLOCK_ERROR;     /* out of order, or more code than BeginOfTask/Sub announced */
+    if (seq) {
+        if (seq == b->dl.last)
+            return DL_OK;          /* a repeated block is acknowledged again, not written twice */
+        if (seq != b->dl.expect)
+            return DL_BLOCK_ERROR; /* out of order */
+    }
+    if (count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
+        return DL_BLOCK_ERROR;     /* more code than BeginOfTask/Sub announced */
     memcpy(b->arena + b->obj_start[b->dl.obj] + b->dl.filled, cmd + 5, count);
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
