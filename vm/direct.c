@@ -59,7 +59,9 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     }
     if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
         return DL_BAD_NUMBER;
-    obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
+    obj = rcx_obj_sub(b->prog, n);
+    if (is_task)
+        obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
     room = mem_free(b);
     if (size > room && (u16)(size - room) > mem_obj_size(b, obj))
         return DL_NO_MEMORY;       /* refused: the old code stays as it was */
@@ -149,7 +151,8 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_DELETE_SUB: {
         /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
         u8 tasks = c <= D_DELETE_TASK;
-        u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
+        u8 limit = tasks ? RCX_TASKS : RCX_SUBS, obj;
+
         i = 0;
         if (op & 7) {              /* one of them: nothing when out of range */
             i = cmd[1];
@@ -158,7 +161,10 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         }
         for (; i < limit; i++) {
             stop_users(b, tasks, i);
-            delete_obj(b, tasks ? rcx_obj_task(b->prog, i) : rcx_obj_sub(b->prog, i));
+            obj = rcx_obj_sub(b->prog, i);
+            if (tasks)
+                obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
+            delete_obj(b, obj);
         }
         break;
     }
