@@ -140,11 +140,6 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_MEMMAP:
         n = mem_memmap(b, reply + 1);
         break;
-    case D_BATTERY:
-        reply[1] = (u8)b->battery_mv;
-        reply[2] = (u8)(b->battery_mv >> 8);
-        n = 2;
-        break;
     case D_DELETE_ALL_TASKS:
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
@@ -168,10 +163,11 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         }
         break;
     }
+    case D_BATTERY:
     case D_POLL: {
-        s16 v = source_poll(b, cmd);
+        u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
         reply[1] = (u8)v;
-        reply[2] = (u8)((u16)v >> 8);
+        reply[2] = (u8)(v >> 8);
         n = 2;
         break;
     }
