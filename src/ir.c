@@ -168,18 +168,17 @@ static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
 
 static void execute(struct rcx_brick *k)
 {
-    struct rcx_ir *ir = &k->ir;
-    u8 op = ir->rx[0];
+    u8 op = k->ir.rx[0];
 
-    ir->rx_state = IR_RX_IDLE;
+    k->ir.rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
     display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
-    if (op != ir->last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
-        u8 at = ir->rx_len > IR_CHUNK ? ir->rx_len : IR_CHUNK;
-        ir->reply_at = at;
-        ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->rx + at);
-        ir->last_op = op;
+    if (op != k->ir.last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
+        u8 at = k->ir.rx_len > IR_CHUNK ? k->ir.rx_len : IR_CHUNK;
+        k->ir.reply_at = at;
+        k->ir.reply_len = vm_direct(&k->vm, k->ir.rx, k->ir.rx_len, k->ir.rx + at);
+        k->ir.last_op = op;
         /* PBAliveOrNot "re-initialises the toggle bit" (spec p. 12): any packet after it is new anyway, since its
          * opcode differs, and a repeated ping is answered the same whether executed or not. */
     }
@@ -187,42 +186,41 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    struct rcx_ir *ir = &k->ir;
     u8 n, len = 0;
 
-    if (ir->range != k->vm.tx_range) {
-        ir->range = k->vm.tx_range;
-        hal_ir_range(&k->vm, ir->range);
+    if (k->ir.range != k->vm.tx_range) {
+        k->ir.range = k->vm.tx_range;
+        hal_ir_range(&k->vm, k->ir.range);
     }
-    if (ir->tx_pos >= ir->tx_total) {
+    if (k->ir.tx_pos >= k->ir.tx_total) {
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
-        if (ir->rx_state == IR_RX_READY && ir->quiet >= IR_REPLY_MS) {
+        if (k->ir.rx_state == IR_RX_READY && k->ir.quiet >= IR_REPLY_MS) {
             execute(k);
-            ir->tx_src = ir->rx + ir->reply_at;
-            len = ir->reply_len;
-            ir->tx_pack = IR_PACK_STANDARD;
-            ir->tx_mode = 0;
-        } else if (k->vm.remote.tx_len && ir->rx_state == IR_RX_IDLE && ir->quiet >= IR_SENSE_MS && ir_idle(k)) {
+            k->ir.tx_src = k->ir.rx + k->ir.reply_at;
+            len = k->ir.reply_len;
+            k->ir.tx_pack = IR_PACK_STANDARD;
+            k->ir.tx_mode = 0;
+        } else if (k->vm.remote.tx_len && k->ir.rx_state == IR_RX_IDLE && k->ir.quiet >= IR_SENSE_MS && ir_idle(k)) {
             /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
              * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
              * on. */
-            ir->tx_src = k->vm.remote.tx;
+            k->ir.tx_src = k->vm.remote.tx;
             len = k->vm.remote.tx_len;
-            ir->tx_pack = k->vm.remote.tx_pack;
-            ir->tx_mode = k->vm.remote.tx_mode;
+            k->ir.tx_pack = k->vm.remote.tx_pack;
+            k->ir.tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
             display_ir_activity(&k->vm);
         }
         if (len)
-            tx_start(ir, len);
+            tx_start(&k->ir, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (!sending(k) || hal_ir_busy(&k->vm))
         return;
     n = 0;
     do
-        ir->rx[n++] = framed(ir, ir->tx_pos++);
-    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);
-    ir->echo = (u16)(ir->echo + n);
-    hal_ir_send(&k->vm, ir->rx, n, ir->tx_mode);
+        k->ir.rx[n++] = framed(&k->ir, k->ir.tx_pos++);
+    while (n < IR_CHUNK && k->ir.tx_pos < k->ir.tx_total);
+    k->ir.echo = (u16)(k->ir.echo + n);
+    hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);
 }
