@@ -25,9 +25,12 @@ void ir_init(struct rcx_brick *k)
     k->ir.last_op = RCX_OP_MESSAGE;
 }
 
+/* Nonzero while a packet goes out. A tail call rather than `||`, which would keep its 0 or 1 across the call. */
 static u8 sending(struct rcx_brick *k)
 {
-    return (u8)(k->ir.tx_pos < k->ir.tx_total || hal_ir_busy(&k->vm));
+    if (k->ir.tx_pos < k->ir.tx_total)
+        return 1;
+    return hal_ir_busy(&k->vm);
 }
 
 u8 ir_idle(struct rcx_brick *k)
@@ -112,10 +115,11 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
 void ir_tick(struct rcx_brick *k)
 {
     struct rcx_ir *ir = &k->ir;
+    u8 quiet = ir->quiet;
 
-    if (ir->quiet != 0xFF)
-        ir->quiet++;
-    if (ir->quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
+    if (quiet != 0xFF)
+        ir->quiet = ++quiet;
+    if (quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
         ir->rx_state = IR_RX_IDLE;
     /* An echo byte lost (or garbled into nothing) must not deafen the receiver for good. */
     if (ir->echo && !sending(k)) {
@@ -186,6 +190,7 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
+    struct rcx_ir *ir;
     u8 n, len = 0;
 
     if (k->ir.range != k->vm.tx_range) {
@@ -217,10 +222,11 @@ void ir_poll(struct rcx_brick *k)
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (!sending(k) || hal_ir_busy(&k->vm))
         return;
+    ir = &k->ir;
     n = 0;
     do
-        k->ir.rx[n++] = framed(&k->ir, k->ir.tx_pos++);
-    while (n < IR_CHUNK && k->ir.tx_pos < k->ir.tx_total);
-    k->ir.echo = (u16)(k->ir.echo + n);
-    hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);
+        ir->rx[n++] = framed(ir, ir->tx_pos++);
+    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);
+    ir->echo = (u16)(ir->echo + n);
+    hal_ir_send(&k->vm, ir->rx, n, ir->tx_mode);
 }
