@@ -107,7 +107,7 @@ static void outputs_off(void)
 }
 
 /* On-Off up for 20 ms in a row. */
-static void wait_onoff_released(void)
+static RCX_HIGH_CODE void wait_onoff_released(void)
 {
     u8 up = 0;
 
