@@ -25,9 +25,12 @@ void ir_init(struct rcx_brick *k)
     k->ir.last_op = RCX_OP_MESSAGE;
 }
 
+/* Nonzero while a packet goes out. A tail call rather than `||`, which would keep its 0 or 1 across the call. */
 static u8 sending(struct rcx_brick *k)
 {
-    return (u8)(k->ir.tx_pos < k->ir.tx_total || hal_ir_busy(&k->vm));
+    if (k->ir.tx_pos < k->ir.tx_total)
+        return 1;
+    return hal_ir_busy(&k->vm);
 }
 
 u8 ir_idle(struct rcx_brick *k)
@@ -112,10 +115,11 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
 void ir_tick(struct rcx_brick *k)
 {
     struct rcx_ir *ir = &k->ir;
+    u8 quiet = ir->quiet;
 
-    if (ir->quiet != 0xFF)
-        ir->quiet++;
-    if (ir->quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
+    if (quiet != 0xFF)
+        ir->quiet = ++quiet;
+    if (quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
         ir->rx_state = IR_RX_IDLE;
     /* An echo byte lost (or garbled into nothing) must not deafen the receiver for good. */
     if (ir->echo && !sending(k)) {
@@ -168,18 +172,17 @@ static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
 
 static void execute(struct rcx_brick *k)
 {
-    struct rcx_ir *ir = &k->ir;
-    u8 op = ir->rx[0];
+    u8 op = k->ir.rx[0];
 
-    ir->rx_state = IR_RX_IDLE;
+    k->ir.rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
     display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
-    if (op != ir->last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
-        u8 at = ir->rx_len > IR_CHUNK ? ir->rx_len : IR_CHUNK;
-        ir->reply_at = at;
-        ir->reply_len = vm_direct(&k->vm, ir->rx, ir->rx_len, ir->rx + at);
-        ir->last_op = op;
+    if (op != k->ir.last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
+        u8 at = k->ir.rx_len > IR_CHUNK ? k->ir.rx_len : IR_CHUNK;
+        k->ir.reply_at = at;
+        k->ir.reply_len = vm_direct(&k->vm, k->ir.rx, k->ir.rx_len, k->ir.rx + at);
+        k->ir.last_op = op;
         /* PBAliveOrNot "re-initialises the toggle bit" (spec p. 12): any packet after it is new anyway, since its
          * opcode differs, and a repeated ping is answered the same whether executed or not. */
     }
@@ -187,38 +190,39 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    struct rcx_ir *ir = &k->ir;
+    struct rcx_ir *ir;
     u8 n, len = 0;
 
-    if (ir->range != k->vm.tx_range) {
-        ir->range = k->vm.tx_range;
-        hal_ir_range(&k->vm, ir->range);
+    if (k->ir.range != k->vm.tx_range) {
+        k->ir.range = k->vm.tx_range;
+        hal_ir_range(&k->vm, k->ir.range);
     }
-    if (ir->tx_pos >= ir->tx_total) {
+    if (k->ir.tx_pos >= k->ir.tx_total) {
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
-        if (ir->rx_state == IR_RX_READY && ir->quiet >= IR_REPLY_MS) {
+        if (k->ir.rx_state == IR_RX_READY && k->ir.quiet >= IR_REPLY_MS) {
             execute(k);
-            ir->tx_src = ir->rx + ir->reply_at;
-            len = ir->reply_len;
-            ir->tx_pack = IR_PACK_STANDARD;
-            ir->tx_mode = 0;
-        } else if (k->vm.remote.tx_len && ir->rx_state == IR_RX_IDLE && ir->quiet >= IR_SENSE_MS && ir_idle(k)) {
+            k->ir.tx_src = k->ir.rx + k->ir.reply_at;
+            len = k->ir.reply_len;
+            k->ir.tx_pack = IR_PACK_STANDARD;
+            k->ir.tx_mode = 0;
+        } else if (k->vm.remote.tx_len && k->ir.rx_state == IR_RX_IDLE && k->ir.quiet >= IR_SENSE_MS && ir_idle(k)) {
             /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
              * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
              * on. */
-            ir->tx_src = k->vm.remote.tx;
+            k->ir.tx_src = k->vm.remote.tx;
             len = k->vm.remote.tx_len;
-            ir->tx_pack = k->vm.remote.tx_pack;
-            ir->tx_mode = k->vm.remote.tx_mode;
+            k->ir.tx_pack = k->vm.remote.tx_pack;
+            k->ir.tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
             display_ir_activity(&k->vm);
         }
         if (len)
-            tx_start(ir, len);
+            tx_start(&k->ir, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (!sending(k) || hal_ir_busy(&k->vm))
         return;
+    ir = &k->ir;
     n = 0;
     do
         ir->rx[n++] = framed(ir, ir->tx_pos++);

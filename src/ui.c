@@ -71,11 +71,12 @@ void ui_tick(struct rcx_brick *k)
 void ui_battery(struct rcx_brick *k)
 {
     struct rcx *b = &k->vm;
-    struct rcx_ui *ui = &k->ui;
+    u8 low = k->ui.battery_low;
 
-    if (ui->battery_low ? b->battery_mv > UI_BATTERY_OK_MV : b->battery_mv < UI_BATTERY_LOW_MV) {
-        ui->battery_low ^= 1;
-        display_mark(b, DISPLAY_MARK_BATTERY, ui->battery_low);
+    if (low ? b->battery_mv > UI_BATTERY_OK_MV : b->battery_mv < UI_BATTERY_LOW_MV) {
+        low ^= 1;
+        k->ui.battery_low = low;
+        display_mark(b, DISPLAY_MARK_BATTERY, low);
     }
 }
 

@@ -24,10 +24,16 @@ static const u8 direct_ops[] = {
 
 enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
 
-/* A task leaves a subroutine's code for good when it is stopped; tasks inside it are stopped first. */
-static void stop_tasks_in_sub(struct rcx *b, u8 sub)
+/* Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
+ * leaves a subroutine's code for good when it is stopped). */
+static void stop_users(struct rcx *b, u8 is_task, u8 sub)
 {
     u8 n;
+
+    if (is_task) {
+        sched_stop_task(b, sub);
+        return;
+    }
     for (n = 0; n < RCX_TASKS; n++) {
         struct rcx_task *t = &b->task[n];
         if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB && (t->sub == sub || (t->has_ret && t->ret_sub == sub)))
@@ -45,6 +51,7 @@ static void delete_obj(struct rcx *b, u8 obj)
 static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
 {
     u8 obj;
+    u16 room;
 
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
@@ -52,13 +59,13 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
     }
     if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
         return DL_BAD_NUMBER;
-    obj = is_task ? rcx_obj_task(b->prog, n) : rcx_obj_sub(b->prog, n);
-    if (size > mem_free(b) && (u16)(size - mem_free(b)) > mem_obj_size(b, obj))
-        return DL_NO_MEMORY;       /* refused: the old code stays as it was */
+    obj = rcx_obj_sub(b->prog, n);
     if (is_task)
-        sched_stop_task(b, n);
-    else
-        stop_tasks_in_sub(b, n);
+        obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
+    room = mem_free(b);
+    if (size > room && (u16)(size - room) > mem_obj_size(b, obj))
+        return DL_NO_MEMORY;       /* refused: the old code stays as it was */
+    stop_users(b, is_task, n);
     mem_resize(b, obj, 0);
     mem_resize(b, obj, size);      /* cannot fail: checked above */
     b->dl.active = 1;
@@ -81,10 +88,14 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
         sum = (u8)(sum + cmd[5 + i]);
     if (sum != cmd[5 + count])
         return DL_BLOCK_ERROR;
-    if (seq != 0 && seq == b->dl.last)
-        return DL_OK;              /* a repeated block is acknowledged again, not written twice */
-    if ((seq != 0 && seq != b->dl.expect) || count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
-        return DL_BLOCK_ERROR;     /* out of order, or more code than BeginOfTask/Sub announced */
+    if (seq) {
+        if (seq == b->dl.last)
+            return DL_OK;          /* a repeated block is acknowledged again, not written twice */
+        if (seq != b->dl.expect)
+            return DL_BLOCK_ERROR; /* out of order */
+    }
+    if (count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
+        return DL_BLOCK_ERROR;     /* more code than BeginOfTask/Sub announced */
     memcpy(b->arena + b->obj_start[b->dl.obj] + b->dl.filled, cmd + 5, count);
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
@@ -96,14 +107,18 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     return DL_OK;
 }
 
+/*
+ * addr is at least 0x8000 and addr + count does not pass 0xFFFF (vm_direct checks), so a byte below the arena is at
+ * most 0x7FFF below it: its offset wraps to 0x8001 or more, past the arena like the bytes above it.
+ */
+RCX_STATIC_ASSERT(arena_offsets_wrap_past_it, RCX_ARENA_SIZE <= 0x8001u);
 static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 {
+    u16 off = (u16)(addr - b->arena_addr);
     u8 i;
-    for (i = 0; i < count; i++) {
-        u16 a = (u16)(addr + i);
-        u16 off = (u16)(a - b->arena_addr);
-        out[i] = (a >= b->arena_addr && off < RCX_ARENA_SIZE) ? b->arena[off] : 0;
-    }
+
+    for (i = 0; i < count; i++, off++)
+        out[i] = off < RCX_ARENA_SIZE ? b->arena[off] : 0;
     return count;
 }
 
@@ -125,32 +140,34 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_MEMMAP:
         n = mem_memmap(b, reply + 1);
         break;
-    case D_BATTERY:
-        reply[1] = (u8)b->battery_mv;
-        reply[2] = (u8)(b->battery_mv >> 8);
-        n = 2;
-        break;
     case D_DELETE_ALL_TASKS:
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
     case D_DELETE_SUB: {
         /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
         u8 tasks = c <= D_DELETE_TASK;
-        u8 limit = tasks ? RCX_TASKS : RCX_SUBS;
-        u8 first = (op & 7) ? cmd[1] : 0, last = (op & 7) ? (u8)(cmd[1] + 1) : limit;
-        for (i = first; i < last && i < limit; i++) {
+        u8 limit = tasks ? RCX_TASKS : RCX_SUBS, obj;
+
+        i = 0;
+        if (op & 7) {              /* one of them: nothing when out of range */
+            i = cmd[1];
+            if (i < limit)
+                limit = (u8)(i + 1);
+        }
+        for (; i < limit; i++) {
+            stop_users(b, tasks, i);
+            obj = rcx_obj_sub(b->prog, i);
             if (tasks)
-                sched_stop_task(b, i);
-            else
-                stop_tasks_in_sub(b, i);
-            delete_obj(b, tasks ? rcx_obj_task(b->prog, i) : rcx_obj_sub(b->prog, i));
+                obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
+            delete_obj(b, obj);
         }
         break;
     }
+    case D_BATTERY:
     case D_POLL: {
-        s16 v = source_poll(b, cmd);
+        u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
         reply[1] = (u8)v;
-        reply[2] = (u8)((u16)v >> 8);
+        reply[2] = (u8)(v >> 8);
         n = 2;
         break;
     }

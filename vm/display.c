@@ -85,11 +85,11 @@ static void digit(u8 pos, u8 glyph)
 }
 
 /*
- * A signed number in positions 1-4 with the point of point_segs[places]: leading zeros dropped except those the
+ * A signed number in positions 1-4 with the point of point_segs[places1 - 1]: leading zeros dropped except those the
  * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
  * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
-static __attribute__((noinline)) void number(s16 v, u8 places)
+static __attribute__((noinline)) void number(s16 v, u8 places1)
 {
     u16 u = v < 0 ? (u16)(0u - (u16)v) : (u16)v, q;
     u8 pos = 1, d;
@@ -99,15 +99,15 @@ static __attribute__((noinline)) void number(s16 v, u8 places)
             digit(pos, MINUS);
         return;
     }
-    lit(point_segs[places]);
-    if (++places > 4) /* digits shown at least */
-        places = 4;
+    lit(point_segs[places1 - 1]);
+    if (places1 > 4) /* digits shown at least */
+        places1 = 4;
     do {
         q = u / 10;
         d = (u8)((u8)u - (u8)q * 10u); /* u % 10 without a second division */
         u = q;
         digit(pos++, d);
-    } while (u || pos <= places);
+    } while (u || pos <= places1);
     if (v < 0)
         digit(pos, MINUS);
 }
@@ -132,55 +132,56 @@ u8 program_running(const struct rcx *b)
 static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
-    struct rcx_display *d = &b->display;
-    u8 i, mode, view, places;
+    u8 i, mode, view, places1;
     s16 v;
 
-    view = d->view;
-    /* `places` is set after any call, so that it need not be kept across one. */
+    view = b->display.view;
+    /* `places1` (decimal places + 1) is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
-        places = (u8)(WATCH_POINT + (d->phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
+        places1 = (u8)(WATCH_POINT + 1 + (b->display.phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
     } else if (view <= DISPLAY_INPUT_3) {
         s = &b->sensor[view - DISPLAY_INPUT_1];
         v = s->value;
-        places = (u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40; /* Celsius, Fahrenheit: tenths */
+        places1 = (u8)(1 + ((u8)(s->mode - SENSOR_MODE_CELSIUS) < 0x40)); /* Celsius, Fahrenheit: tenths */
     } else if (view <= DISPLAY_OUTPUT_C) {
         /* 0 while the output is not running, power + 1 (1-8) while it is, as firm0328 shows it. */
         i = outputs_status(b, (u8)(view - DISPLAY_OUTPUT_A));
         v = (i & RCX_MOTOR_ON) ? (s16)((i & RCX_MOTOR_POWER) + 1) : 0;
-        places = 0;
+        places1 = 1;
     } else {
         /* Reading the random source would advance the program's random sequence at every refresh. */
-        v = d->user_source == RCX_SRC_RANDOM ? 0 : source_get(b, NULL, d->user_source, d->user_index);
-        places = d->user_precision;
+        v = b->display.user_source == RCX_SRC_RANDOM ? 0
+                                                    : source_get(b, NULL, b->display.user_source, b->display.user_index);
+        places1 = (u8)(b->display.user_precision + 1);
     }
     i = (u8)(b->prog + 1);
-    if (v != d->digits_v || (u8)(places + 1) != d->digits_places1 || i != d->digits_prog1) {
+    if (v != b->display.digits_v || places1 != b->display.digits_places1 || i != b->display.digits_prog1) {
+        b->display.digits_v = v;
+        b->display.digits_places1 = places1;
+        b->display.digits_prog1 = i;
         memset(work, 0, DISPLAY_BYTES);
-        d->digits_v = v;
-        d->digits_places1 = (u8)(places + 1);
-        d->digits_prog1 = i;
         digit(0, i);
-        number(v, places);
-        memcpy(d->digits, work, DISPLAY_BYTES);
+        number(v, b->display.digits_places1); /* read back: kept across the calls it would cost a spill */
+        memcpy(b->display.digits, work, DISPLAY_BYTES);
     }
     for (i = 0; i < DISPLAY_BYTES; i++)
-        work[i] = (u8)(d->marks[i] | d->digits[i]);
+        work[i] = (u8)(b->display.marks[i] | b->display.digits[i]);
     /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
-    if ((u8)(d->phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
+    if ((u8)(b->display.phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
         work[0] |= FIGURE_WALKING;
     else
         work[0] |= FIGURE_STANDING;
-    if (d->ir)
+    if (b->display.ir)
         lit(DISPLAY_MARK_IR_LOW);
-    for (i = 0; i < RCX_SENSORS; i++) {
+    for (i = 0; i < RCX_SENSORS; i++)
         if (b->sensor[i].boolean)
             mark(INPUT_PRESSED + i);
+    for (i = 0; i < RCX_MOTORS; i++) {
         mode = outputs_mode(b, i);
         mark((u8)(OUTPUT_MODE + mode * 3 + i));
     }
-    mark(VIEW_SELECTED + view);
+    mark(VIEW_SELECTED + b->display.view);
 }
 
 void display_view(struct rcx *b, u8 view)
@@ -218,15 +219,13 @@ RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 /* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */
 void display_tick(struct rcx *b)
 {
-    struct rcx_display *d = &b->display;
-
-    if (++d->phase >= 6 * DISPLAY_FRAME_STEPS)
-        d->phase = 0;
-    if (d->ir)
-        d->ir--;
+    if (++b->display.phase >= 6 * DISPLAY_FRAME_STEPS)
+        b->display.phase = 0;
+    if (b->display.ir)
+        b->display.ir--;
     compose(b);
-    if (memcmp(work, d->shown, DISPLAY_BYTES)) {
-        memcpy(d->shown, work, DISPLAY_BYTES);
-        hal_lcd(b, d->shown);
+    if (memcmp(work, b->display.shown, DISPLAY_BYTES)) {
+        memcpy(b->display.shown, work, DISPLAY_BYTES);
+        hal_lcd(b, b->display.shown);
     }
 }

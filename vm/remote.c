@@ -44,7 +44,7 @@ void remote_command(struct rcx *b, u16 bits)
     }
     if (pressed & REMOTE_SOUND)
         sound_system(b, REMOTE_SYSTEM_SOUND);
-    if (pressed & REMOTE_MESSAGES) {
+    if ((u8)(pressed >> 8) & (u8)(REMOTE_MESSAGES >> 8)) {
         /* As InternMessage would: PB message 1-3. */
         b->message = (u8)(lowest_bit((u8)(pressed >> 8)) + 1);
         events_message_changed(b);

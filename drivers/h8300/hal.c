@@ -29,7 +29,7 @@ RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
 
 /* The A/D interrupt applies the mask after each scan, the tick interrupt removes power before the next while
  * any input has it; an input no longer in the mask is unpowered here, at once. */
-void hal_sensor_power(struct rcx *b, u8 input, u8 on)
+RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
     u8 bit, power;
 
@@ -107,7 +107,7 @@ static void outputs_off(void)
 }
 
 /* On-Off up for 20 ms in a row. */
-static void wait_onoff_released(void)
+static RCX_HIGH_CODE void wait_onoff_released(void)
 {
     u8 up = 0;
 

@@ -49,7 +49,7 @@ RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound
 
 /* FRT at 500 kHz, cleared on compare match A at 499: 1.000 ms per period (rcx-hardware.md §6). The buttons'
  * present state becomes the debounced one, without edges. */
-void drv_tick_start(u8 irq)
+RCX_HIGH_CODE void drv_tick_start(u8 irq)
 {
     button_pins = BUTTON_PINS();
     buttons.state = hw_buttons(button_pins, button_pins);
