@@ -304,6 +304,18 @@ static void upload_ram(void **state)
     assert_int_equal(SEND(b, r, 0x6B, (u8)(addr + 5), (u8)((addr + 5) >> 8), 3), 4);
     assert_int_equal(r[0], 0x94);
     assert_memory_equal(r + 1, code + 5, 3);
+    /* Across the arena's ends: what lies outside it reads as 0. */
+    assert_int_equal(addr, TEST_ARENA_ADDR); /* the only code there is */
+    addr = (u16)(TEST_ARENA_ADDR - 10);
+    assert_int_equal(SEND(b, r, 0x63, (u8)addr, (u8)(addr >> 8), 30), 31);
+    for (i = 1; i <= 10; i++)
+        assert_int_equal(r[i], 0);
+    assert_memory_equal(r + 11, code, 20);
+    b->arena[sizeof b->arena - 1] = 0x55;
+    addr = (u16)(TEST_ARENA_ADDR + sizeof b->arena - 3);
+    assert_int_equal(SEND(b, r, 0x63, (u8)addr, (u8)(addr >> 8), 6), 7);
+    assert_int_equal(r[3], 0x55);
+    assert_int_equal(r[4] | r[5] | r[6], 0);
 
     /* Limits (p. 68, reference-firmware.md): 0-150 bytes from 0x8000 up; only the start address is checked. */
     assert_int_equal(SEND(b, r, 0x63, 0x00, 0x80, 0), 1);
