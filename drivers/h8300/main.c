@@ -220,8 +220,9 @@ int main(void)
             continue;
         /* Tasks run on through quiet milliseconds: the tick interrupt lets that many pass without ending the run
          * (rcx.yield) as long as they start nothing that needs the clock (irq.s), and an interrupt that leaves
-         * work ends it. */
-        quiet = brick.vm.runmask ? quiet_ms() : 0;
+         * work ends it. Not this time if such an interrupt came since the inputs were read: rcx.yield, which it
+         * set, was cleared above, but drv_woken tells. */
+        quiet = brick.vm.runmask && !drv_woken ? quiet_ms() : 0;
         drv_quiet = quiet;
         /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
          * milliseconds it sleeps on, as long as no sample or byte comes in. In both cases the milliseconds are
