@@ -156,7 +156,10 @@ static const u8 rom_state[] RCX_HIGH_DATA = {
     0xD8, 2, 0x00, 0xFF,        /* SCI SMR, BRR */
     0x90, 8, 0x01, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0x00, 0xE0, /* FRT TIER, TCSR, FRC, OCRA, TCR, TOCR */
     0xB5, 1, 0x00,              /* P4DDR (P3 is the data bus: never touched) */
-    0xB7, 5, 0x00, 0xF8, 0x00, 0xF8, 0x00, /* P4DR, P5DDR, P6DDR, P5DR, P6DR */
+    /* P4DR, P5DDR, P6DDR, P5DR, P6DR; but P5.2, the external RAM's power-save line, stays an output at 0: this code
+     * and table run from external RAM, which a floating P5.2 could put to sleep under them, and the ROM's own first
+     * instructions run before it drives the line again (rcx-hardware.md 2.4). */
+    0xB7, 5, 0x00, 0xFC, 0x00, 0xF8, 0x00,
     0xC3, 2, 0xF8, 0x0B,        /* STCR, SYSCR (no standby on SLEEP; the ROM sets its own) */
     /* ISCR, IER, TMR0 TCR, TCSR, TCORA, TCORB, and TCNT, the one exception: non-zero, so that the ROM comes up
      * awake and ready for a download instead of asleep (rcx-hardware.md 2.4). */
@@ -164,8 +167,9 @@ static const u8 rom_state[] RCX_HIGH_DATA = {
     0xD0, 5, 0x00, 0x10, 0xFF, 0xFF, 0x00, /* TMR1 TCR, TCSR, TCORA, TCORB, TCNT */
     0xE8, 2, 0x00, 0x7F,        /* A/D ADCSR, ADCR */
     /* The ROM's copies of the write-only port directions (rcx-hardware.md 1.2), which the start-up code's stack
-     * and the standby code overwrote: P1 and P2 as the ROM set them (the address bus), the others as just reset. */
-    0x80, 7, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00, 0x00,
+     * and the standby code overwrote: P1 and P2 as the ROM set them (the address bus), P5 with its P5.2 output, the
+     * others as just reset. */
+    0x80, 7, 0xFF, 0xFF, 0x00, 0x00, 0x04, 0x00, 0x00,
     0
 };
 

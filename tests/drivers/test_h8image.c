@@ -607,7 +607,7 @@ static const struct { uint16_t addr; uint8_t value; const char *name; } after_re
     { 0xFF90, 0x01, "FRT TIER" }, { 0xFF91, 0x00, "FRT TCSR" }, { 0xFF92, 0x00, "FRC high" },
     { 0xFF93, 0x00, "FRC low" }, { 0xFF94, 0xFF, "OCRA high" }, { 0xFF95, 0xFF, "OCRA low" },
     { 0xFF96, 0x00, "FRT TCR" }, { 0xFF97, 0xE0, "FRT TOCR" },
-    { 0xFFB5, 0x00, "P4DDR" }, { 0xFFB7, 0x00, "P4DR" }, { 0xFFB8, 0xF8, "P5DDR" }, { 0xFFB9, 0x00, "P6DDR" },
+    { 0xFFB5, 0x00, "P4DDR" }, { 0xFFB7, 0x00, "P4DR" }, { 0xFFB8, 0xFC, "P5DDR (P5.2 stays an output)" }, { 0xFFB9, 0x00, "P6DDR" },
     { 0xFFBA, 0xF8, "P5DR" }, { 0xFFBB, 0x00, "P6DR" },
     { 0xFFC3, 0xF8, "STCR" }, { 0xFFC4, 0x0B, "SYSCR" }, { 0xFFC6, 0xF8, "ISCR" }, { 0xFFC7, 0xF8, "IER" },
     { 0xFFC8, 0x00, "TMR0 TCR" }, { 0xFFC9, 0x10, "TMR0 TCSR" }, { 0xFFCA, 0xFF, "TMR0 TCORA" },
@@ -619,10 +619,20 @@ static const struct { uint16_t addr; uint8_t value; const char *name; } after_re
     { 0xFFE8, 0x00, "ADCSR" }, { 0xFFE9, 0x7F, "ADCR" },
     { 0xFF80, 0x00, "motor latch" },
     { 0xFD80, 0xFF, "P1DDR shadow" }, { 0xFD81, 0xFF, "P2DDR shadow" }, { 0xFD82, 0x00, "P3DDR shadow" },
-    { 0xFD83, 0x00, "P4DDR shadow" }, { 0xFD84, 0x00, "P5DDR shadow" }, { 0xFD85, 0x00, "P6DDR shadow" },
+    { 0xFD83, 0x00, "P4DDR shadow" }, { 0xFD84, 0x04, "P5DDR shadow" }, { 0xFD85, 0x00, "P6DDR shadow" },
     { 0xFD86, 0x00, "P7 shadow" },
 };
 #define RESET_VECTOR_TARGET 0x03AE /* what the ROM's vector at 0000 holds */
+
+/* Registers filled at random, except P5.2, the external RAM's power-save line: an output at 0 while the brick runs
+ * (the simulator stops on any external-RAM access otherwise). */
+static void fill_registers(uint8_t fill, uint8_t step)
+{
+    for (unsigned i = 0; i < 128; i++)
+        h.mem[0xFF80 + i] = (uint8_t)(fill ^ (step * i));
+    h.mem[0xFFB8] |= 0x04;
+    h.mem[0xFFBA] &= (uint8_t)~0x04;
+}
 
 static int reset_value_of(uint16_t a, uint8_t *v)
 {
@@ -641,7 +651,7 @@ static void registers_the_drivers_write(uint8_t written[128])
     memset(written, 0, 128);
     for (unsigned f = 0; f < 2; f++) {
         assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
-        memset(h.mem + 0xFF80, fill[f], 128);
+        fill_registers(fill[f], 0);
         h8_run(&h, "_drv_outputs_on", 0, 0, 0, NULL, 0);
         h8_run(&h, "_drv_tick_start", 1, 0, 0, NULL, 0);
         h8_run(&h, "_sci_start", HAL_IR_4800 | HAL_IR_76KHZ | HAL_IR_DUTY25, 0, 0, NULL, 0);
@@ -661,8 +671,7 @@ static void hand_back_leaves_registers_as_after_reset(void **state)
     registers_the_drivers_write(written);
     /* The brick as it runs: the drivers' settings, flags standing, the standby code at FD80. */
     assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
-    for (unsigned i = 0; i < 128; i++)
-        h.mem[0xFF80 + i] = (uint8_t)(0x5A ^ i);
+    fill_registers(0x5A, 1);
     memset(h.mem + 0xFD80, 0x6D, 16);
     h.mem[0] = RESET_VECTOR_TARGET >> 8;
     h.mem[1] = RESET_VECTOR_TARGET & 0xFF;
