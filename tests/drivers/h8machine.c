@@ -106,6 +106,7 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
     struct h8machine *m = self;
     uint8_t now = h->mem[a];
 
+    m->resched = 1;
     if (a == P6DR)
         lcd_bus(m, was, now);
     else if (a == TMR0_TCR) {
@@ -233,6 +234,7 @@ static void standby_enter(struct h8machine *m)
     };
     unsigned i;
 
+    memcpy(m->sleep_io, m->h.mem + 0xFF80, sizeof m->sleep_io); /* before the modules are reset */
     m->standby = 1;
     m->standbys++;
     m->settle_at = 0;
@@ -367,6 +369,10 @@ int h8m_run(struct h8machine *m, unsigned long long until)
         m->inhibit = op >= 0x03 && op <= 0x07;
         if (h8_step_traced(h))
             return -1;
+        if (m->resched) { /* a timer set up, a conversion or a transmission started: not only at the next event */
+            m->resched = 0;
+            next = next_event(m);
+        }
         if (h->asleep && (h->mem[SYSCR] & SSBY)) {
             standby_enter(m);
             next = next_event(m);

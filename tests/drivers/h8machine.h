@@ -58,6 +58,8 @@ struct h8machine {
     unsigned long long tone_at;             /* ... and when */
     uint8_t latch;                          /* the motor latch as last written ... */
     unsigned long long latch_at;            /* ... and when it last changed */
+    int resched;                            /* a register was written: the next event may have moved */
+    uint8_t sleep_io[128];                  /* FF80-FFFF as the SLEEP that entered the last standby found them */
     uint8_t lcd[H8M_LCD];                   /* the last complete frame on the LCD bus (START to STOP) */
     unsigned lcd_len, lcd_frames;
     uint8_t lcd_rx[H8M_LCD];                /* the frame being sent */

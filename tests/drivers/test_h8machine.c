@@ -24,7 +24,7 @@ static const uint8_t busy[] = { 0x24, 0x00, 0x02, 0x01, 0x00, 0x27, 0x86 }; /* w
 static int boot(void **state)
 {
     (void)state;
-    if (h8m_boot(&m, image_path, nm_path) || h8m_run(&m, 300 * H8M_MS))
+    if (h8m_boot(&m, image_path, nm_path) || h8m_run(&m, 600 * H8M_MS)) /* past the double beep it starts with */
         return -1;
     return 0;
 }
