@@ -129,7 +129,7 @@ static int whole_image(const char *image, const char *nm, unsigned busy, struct 
     unsigned long long t0, s0, ts, lat, worst = 0;
     int x1, x2;
 
-    if (h8m_boot(m, image, nm) || h8m_run(m, 300 * H8M_MS))
+    if (h8m_boot(m, image, nm) || h8m_run(m, 600 * H8M_MS)) /* past the double beep it starts with */
         goto failed;
     t0 = m->h.states;
     s0 = m->slept;
