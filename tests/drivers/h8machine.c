@@ -75,11 +75,53 @@ static uint8_t io_read(struct h8 *h, uint16_t a, uint8_t held)
     return held;
 }
 
-/* The LCD bus (rcx-hardware.md §3.6) as the controller hears it: START and STOP are SDA changing while SCL stays
- * high; a bit is taken as SCL rises, eight to a byte and then the acknowledge clock. */
+/*
+ * The LCD bus (rcx-hardware.md §3.6) as the controller hears it: START and STOP are SDA changing while SCL stays
+ * high; a bit is taken as SCL rises, eight to a byte and then the acknowledge clock.
+ * And its timing, held to standard-mode I2C (the PCF8566 is a 100 kHz part): every edge is timed in CPU states. A
+ * port write lands in the instruction's write cycle, its last bus cycle (H8/300 manual, bus states of each
+ * instruction: the next instruction's fetch comes before the read and write of bset/bclr/bst/mov), so `states` at
+ * the hook is when the cycle ends; where in its 3 states the pin changes is not known (and the first byte of a word
+ * written to FFBA lands 3 states before the second). Conservatively an interval counts from the end of its first
+ * write to the start of its last: 3 states less than the hooks' difference. Both lines changing in one write is
+ * a fault within a frame (their order is undefined); outside one (start-up, standby, waking) it is not checked.
+ * The levels are P6DR's (P6DDR is not looked at: the drivers keep both lines outputs while they use the bus).
+ */
+static const struct { const char *what; long long least; } lcd_limit[H8M_LCD_TIMES] = {
+    [H8M_LCD_HIGH] = { "SCL high", 64 },          /* tHIGH 4.0 us at 62.5 ns a state */
+    [H8M_LCD_LOW] = { "SCL low", 76 },            /* tLOW 4.7 us */
+    [H8M_LCD_SETUP] = { "SDA set-up", 4 },        /* tSU;DAT 250 ns, before SCL rises */
+    [H8M_LCD_HOLD] = { "SDA hold", 0 },           /* tHD;DAT 0, after SCL falls */
+    [H8M_LCD_HD_STA] = { "START hold", 64 },      /* tHD;STA 4.0 us, to the first SCL fall */
+    [H8M_LCD_SU_STA] = { "START set-up", 76 },    /* tSU;STA 4.7 us, SCL high before SDA falls */
+    [H8M_LCD_SU_STO] = { "STOP set-up", 64 },     /* tSU;STO 4.0 us, SCL high before SDA rises */
+    [H8M_LCD_BUF] = { "bus free", 76 },           /* tBUF 4.7 us, from a STOP to the next START */
+};
+
+static void lcd_time(struct h8machine *m, int k, unsigned long long from)
+{
+    long long t = (long long)(m->h.states - from) - 3;
+    if (!(m->lcd_timed & 1u << k) || t < m->lcd_least[k])
+        m->lcd_least[k] = t;
+    m->lcd_timed |= 1u << k;
+    if (t < lcd_limit[k].least && !m->lcd_faults++)
+        snprintf(m->lcd_fault, sizeof m->lcd_fault, "%s %lld states (at least %lld) at state %llu, the write before pc %04X",
+                 lcd_limit[k].what, t, lcd_limit[k].least, m->h.states, m->h.pc);
+}
+
 static void lcd_bus(struct h8machine *m, uint8_t was, uint8_t now)
 {
-    if ((was & now & LCD_SCL) && (was ^ now) & LCD_SDA) {
+    uint8_t moved = (uint8_t)((was ^ now) & (LCD_SCL | LCD_SDA));
+    unsigned long long t = m->h.states;
+
+    if (!moved)
+        return;
+    if (moved == (LCD_SCL | LCD_SDA)) {
+        if (m->lcd_in && !m->lcd_faults++)
+            snprintf(m->lcd_fault, sizeof m->lcd_fault, "SCL and SDA changed in one write at state %llu, before pc %04X",
+                     t, m->h.pc);
+    } else if (moved == LCD_SDA && (now & LCD_SCL)) {
+        lcd_time(m, now & LCD_SDA ? H8M_LCD_SU_STO : H8M_LCD_SU_STA, m->lcd_scl_at);
         if (now & LCD_SDA) {
             if (m->lcd_in) {
                 memcpy(m->lcd, m->lcd_rx, m->lcd_n);
@@ -87,18 +129,35 @@ static void lcd_bus(struct h8machine *m, uint8_t was, uint8_t now)
                 m->lcd_frames++;
             }
             m->lcd_in = 0;
+            m->lcd_stop_at = t;
         } else {
+            if (m->lcd_stop_at)
+                lcd_time(m, H8M_LCD_BUF, m->lcd_stop_at);
             m->lcd_in = 1;
             m->lcd_n = m->lcd_bits = 0;
+            m->lcd_start_at = t; /* until SCL first falls */
         }
-    } else if (m->lcd_in && !(was & LCD_SCL) && (now & LCD_SCL)) {
+    } else if (m->lcd_in && moved == LCD_SDA) {
+        lcd_time(m, H8M_LCD_HOLD, m->lcd_scl_at);
+    } else if (m->lcd_in && (now & LCD_SCL)) {
+        lcd_time(m, H8M_LCD_LOW, m->lcd_scl_at);
+        lcd_time(m, H8M_LCD_SETUP, m->lcd_sda_at);
         if (m->lcd_bits < 8 && m->lcd_n < H8M_LCD)
             m->lcd_rx[m->lcd_n] = (uint8_t)(m->lcd_rx[m->lcd_n] << 1 | !!(now & LCD_SDA));
         if (++m->lcd_bits == 9) {
             m->lcd_bits = 0;
             m->lcd_n += m->lcd_n < H8M_LCD;
         }
+    } else if (m->lcd_in) {
+        lcd_time(m, H8M_LCD_HIGH, m->lcd_scl_at);
+        if (m->lcd_start_at)
+            lcd_time(m, H8M_LCD_HD_STA, m->lcd_start_at);
+        m->lcd_start_at = 0;
     }
+    if (moved & LCD_SCL)
+        m->lcd_scl_at = t;
+    if (moved & LCD_SDA)
+        m->lcd_sda_at = t;
 }
 
 static void io_write(struct h8 *h, uint16_t a, uint8_t was)

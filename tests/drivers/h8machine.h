@@ -19,6 +19,9 @@
 #define H8M_TX 4096
 #define H8M_CHANGES 64
 #define H8M_LCD 16
+/* The LCD bus's timing, as intervals of struct h8machine's lcd_least (standard-mode I2C names). */
+enum { H8M_LCD_HIGH, H8M_LCD_LOW, H8M_LCD_SETUP, H8M_LCD_HOLD, H8M_LCD_HD_STA, H8M_LCD_SU_STA, H8M_LCD_SU_STO,
+       H8M_LCD_BUF, H8M_LCD_TIMES };
 /* Buttons, as bits of `held` and of h8m_button (rcx-hardware.md §3.5). */
 #define H8M_ONOFF 0x01 /* P4.1, IRQ1 */
 #define H8M_RUN 0x02   /* P4.2, IRQ0 */
@@ -65,6 +68,13 @@ struct h8machine {
     uint8_t lcd_rx[H8M_LCD];                /* the frame being sent */
     unsigned lcd_n, lcd_bits;
     int lcd_in;
+    /* Its timing (h8machine.c lcd_bus): when each line last changed, the last STOP, the START until SCL first
+     * falls; the shortest of each interval (in states, H8M_LCD_HIGH ...; lcd_timed bit k: lcd_least[k] is set),
+     * how many broke their standard-mode limit and what the first was. */
+    unsigned long long lcd_scl_at, lcd_sda_at, lcd_stop_at, lcd_start_at;
+    long long lcd_least[H8M_LCD_TIMES];
+    unsigned lcd_timed, lcd_faults;
+    char lcd_fault[120];
 };
 
 /* Load the image, run its start-up code, reset the peripherals; main() is next. 0 on success. */

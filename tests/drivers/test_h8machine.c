@@ -265,10 +265,155 @@ static void idle_brick_sleeps_between_ticks(void **state)
     assert_true((double)(m.slept - s0) / (double)(m.h.states - t0) > 0.92);
 }
 
+/*
+ * The LCD bus's timing (issue 15, item 3; h8machine.c lcd_bus): the controller is a standard-mode I2C part. First the
+ * model itself, on a frame written by code of the test's own in on-chip ROM's place (2 states a fetch, 5 states a
+ * `mov.b rs,@0xbb:8`, 2 a nop): each interval at its limit passes and is measured at exactly that (the conservative
+ * 3 states off the hooks' difference), and 1 or 2 states less fails naming it.
+ */
+#define P6_IDLE 0x60 /* SCL (P6.5) and SDA (P6.6) high */
+#define P6_SCL 0x20
+#define P6_SDA 0x40
+enum { G_SU_STA, G_HD_STA, G_HOLD, G_LOW, G_SETUP, G_HIGH, G_SU_STO, G_BUF, G_ONE_WRITE, GAPS };
+/* States between the port writes that make each interval exactly its limit: 3 more (the set-up's is the last
+ * write of the low time, the low time the whole of it). */
+static const unsigned gap_ok[GAPS] = { 79, 67, 5, 79, 7, 67, 67, 79, 0 };
+
+/* Writes `p6` to P6DR `gap` states (5, 7, 9 or more) after the previous write's hook. */
+static unsigned emit(uint8_t *code, unsigned k, uint8_t p6, unsigned gap)
+{
+    static const uint8_t reg[4] = { 0x30, 0x38, 0x31, 0x39 }; /* mov.b r0h/r0l/r1h/r1l,@0xbb:8: 00 20 40 60 */
+    if (gap % 2 == 0) {
+        code[k++] = 0x2E; /* mov.b @0xbb:8,r6l: 5 states */
+        code[k++] = 0xBB;
+        gap -= 5;
+    }
+    for (; gap > 5; gap -= 2)
+        code[k++] = 0, code[k++] = 0; /* nop */
+    code[k++] = reg[p6 >> 5];
+    code[k++] = 0xBB;
+    return k;
+}
+
+/* START, a bit 1, a bit 0, STOP; START, a clock, STOP. With `shorter` one of the intervals 2 states short, or
+ * (G_ONE_WRITE) SDA rising in the write in which SCL falls. */
+static void lcd_bus_frame(int shorter)
+{
+    static const uint8_t load[] = { 0xF0, 0x00, 0xF8, 0x20, 0xF1, 0x40, 0xF9, 0x60 }; /* r0h..r1l = 00 20 40 60 */
+    uint8_t code[1024];
+    unsigned g[GAPS], k = sizeof load, i;
+
+    for (i = 0; i < GAPS; i++)
+        g[i] = gap_ok[i] - (shorter == (int)i && i != G_ONE_WRITE ? 2 : 0);
+    memcpy(code, load, sizeof load);
+    k = emit(code, k, 0x00, 9);
+    k = emit(code, k, P6_IDLE, 9);                  /* outside a frame: both lines in one write */
+    k = emit(code, k, P6_SCL, g[G_SU_STA]);         /* START */
+    k = emit(code, k, 0x00, g[G_HD_STA]);
+    k = emit(code, k, P6_SDA, g[G_HOLD]);           /* bit 1 */
+    k = emit(code, k, P6_IDLE, g[G_LOW] - g[G_HOLD]);
+    k = emit(code, k, P6_SDA, g[G_HIGH]);
+    k = emit(code, k, 0x00, gap_ok[G_LOW] - g[G_SETUP]); /* bit 0, SDA changing late */
+    k = emit(code, k, P6_SCL, g[G_SETUP]);
+    k = emit(code, k, 0x00, 67);
+    k = emit(code, k, P6_SCL, 80);
+    if (shorter == G_ONE_WRITE) {
+        k = emit(code, k, P6_SDA, 67);              /* SCL falls as SDA rises */
+        k = emit(code, k, P6_IDLE, 80);
+    }
+    k = emit(code, k, P6_IDLE, g[G_SU_STO]);        /* STOP (or nothing moves) */
+    k = emit(code, k, P6_SCL, g[G_BUF]);            /* START */
+    k = emit(code, k, 0x00, 67);
+    k = emit(code, k, P6_SCL, 80);
+    k = emit(code, k, P6_IDLE, 67);                 /* STOP */
+    code[k++] = 0x40;                               /* bra . */
+    code[k++] = 0xFE;
+    assert_true(k <= sizeof code);
+    assert_int_equal(h8m_boot(&m, image_path, nm_path), 0);
+    memcpy(m.h.mem + 0x1000, code, k);
+    m.h.pc = 0x1000;
+    m.h.ccr |= 0x80;
+    assert_int_equal(h8m_run(&m, m.h.states + 4 * k), 0);
+    assert_int_equal(m.h.pc, 0x1000 + k - 2);
+    assert_int_equal(m.lcd_frames, shorter == G_ONE_WRITE ? 1 : 2);
+}
+
+static void lcd_bus_model_holds_each_standard_mode_limit(void **state)
+{
+    static const struct { int gap, time; long long least; const char *what; } fail[] = {
+        { G_SU_STA, H8M_LCD_SU_STA, 76, "START set-up" }, { G_HD_STA, H8M_LCD_HD_STA, 64, "START hold" },
+        { G_LOW, H8M_LCD_LOW, 76, "SCL low" },            { G_SETUP, H8M_LCD_SETUP, 4, "SDA set-up" },
+        { G_HIGH, H8M_LCD_HIGH, 64, "SCL high" },         { G_SU_STO, H8M_LCD_SU_STO, 64, "STOP set-up" },
+        { G_BUF, H8M_LCD_BUF, 76, "bus free" },           { G_ONE_WRITE, -1, 0, "SCL and SDA changed in one" },
+    };
+    unsigned i;
+    (void)state;
+    lcd_bus_frame(-1);
+    assert_int_equal(m.lcd_faults, 0);
+    assert_int_equal(m.lcd_timed, (1u << H8M_LCD_TIMES) - 1);
+    for (i = 0; i < sizeof fail / sizeof fail[0]; i++)
+        if (fail[i].time >= 0)
+            assert_int_equal(m.lcd_least[fail[i].time], fail[i].least);
+    assert_int_equal(m.lcd_least[H8M_LCD_HOLD], 2);
+    for (i = 0; i < sizeof fail / sizeof fail[0]; i++) {
+        lcd_bus_frame(fail[i].gap);
+        assert_int_equal(m.lcd_faults, 1);
+        if (strncmp(m.lcd_fault, fail[i].what, strlen(fail[i].what)))
+            fail_msg("expected %s, got %s", fail[i].what, m.lcd_fault);
+    }
+}
+
+static void press(uint8_t button, unsigned long long at)
+{
+    assert_int_equal(h8m_button(&m, button, 1, at), 0);
+    assert_int_equal(h8m_button(&m, button, 0, at + 150 * H8M_MS), 0);
+}
+
+/* Then the image's own frames: start-up, the buttons' views, a task's counting display (a frame every 20 to 40 ms),
+ * switching off and on. */
+static void lcd_frames_keep_standard_mode_timing(void **state)
+{
+    static const uint8_t counting[] = { 0xE5, 0, 0, 0, 0, 0,          /* show variable 0 */
+                                        0x24, 0x00, 0x02, 0x01, 0x00, /* var 0 += 1 */
+                                        0x27, 0x86 },                 /* back to it */
+                         start[] = { 0x71, 0 }, stop[] = { 0x50 };
+    static const char *const name[H8M_LCD_TIMES] = { "SCL high", "SCL low", "SDA set-up", "SDA hold",
+                                                     "START hold", "START set-up", "STOP set-up", "bus free" };
+    unsigned long long t = m.h.states;
+    unsigned frames = m.lcd_frames, standbys = m.standbys, i;
+    (void)state;
+    assert_true(frames >= 1);
+    press(H8M_PRGM, t + 10 * H8M_MS);
+    press(H8M_VIEW, t + 400 * H8M_MS);
+    press(H8M_VIEW, t + 800 * H8M_MS);
+    assert_int_equal(h8m_run(&m, t + 1200 * H8M_MS), 0);
+    assert_int_equal(h8m_download_task(&m, 0, counting, sizeof counting), 0);
+    assert_int_equal(h8m_transact(&m, start, 2, NULL, 1, NULL), 0);
+    assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK), 0);
+    assert_int_equal(h8m_transact(&m, stop, 1, NULL, 1, NULL), 0);
+    assert_true(m.lcd_frames >= frames + 20);
+    t = m.h.states;
+    press(H8M_ONOFF, t + 10 * H8M_MS);
+    assert_int_equal(h8m_run(&m, t + H8M_CLOCK), 0);
+    assert_int_equal(m.standbys, standbys + 1);
+    assert_int_equal(m.lcd[1], 0x40); /* switched off */
+    frames = m.lcd_frames;
+    press(H8M_ONOFF, m.h.states + 10 * H8M_MS);
+    assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK), 0);
+    assert_true(m.lcd_frames > frames);
+    assert_int_equal(m.lcd[1] & 0x7F, 0x48); /* on again */
+    for (i = 0; i < H8M_LCD_TIMES; i++)
+        print_message("%-12s %5.2f us\n", name[i], m.lcd_least[i] / 16.0);
+    if (m.lcd_faults)
+        fail_msg("%u LCD bus timing faults, the first: %s", m.lcd_faults, m.lcd_fault);
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(idle_brick_sleeps_between_ticks, boot),
+        cmocka_unit_test(lcd_bus_model_holds_each_standard_mode_limit),
+        cmocka_unit_test_setup(lcd_frames_keep_standard_mode_timing, boot),
         cmocka_unit_test_setup(lone_task_runs_at_full_speed, boot),
         cmocka_unit_test_setup(one_busy_task_leaves_commands_answered, boot),
         cmocka_unit_test_setup(ten_busy_tasks_leave_commands_answered, boot),
