@@ -6,7 +6,8 @@ ASAN_DIR   := $(BUILD)/asan
 TARGET_DIR := $(BUILD)/h8300
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
-# command-or-file:debian-package
+# command-or-file:debian-package (installed one target at a time: `make -j` runs the deps targets side by side, and
+# apt-get refuses to run while another holds its lock)
 HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc firmdl3:brickos \
                /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
                /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
@@ -24,7 +25,8 @@ define install_missing
 	  else command -v "$$what" >/dev/null 2>&1 || missing="$$missing $$pkg"; fi; done; \
 	if [ -n "$$missing" ]; then echo "installing Debian packages:$$missing"; \
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; fi
+	  flock /tmp/openrcx-apt.lock sh -c "$$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+	    $$SUDO apt-get install -y -qq $$missing >/dev/null"; fi
 endef
 
 deps-host:
