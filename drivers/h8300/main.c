@@ -1,7 +1,8 @@
 /*
  * OpenRCX on the brick: start-up, the main loop, and the interrupt that keeps time (rcx-hardware.md 3.2-3.5,
- * 3.9). The interrupt only drives the motor latch, switches sensor power around the A/D scan and stores results;
- * the main loop feeds everything to the runtime (src/runtime.h), which must never run inside an interrupt.
+ * 3.9). The interrupt only drives the motor latch, reads the A/D (switching each active sensor's power off around
+ * its conversion) and stores results; the main loop feeds everything to the runtime (src/runtime.h), which must
+ * never run inside an interrupt.
  */
 #include "runtime.h"
 #include "h8.h"
@@ -186,7 +187,6 @@ int main(void)
                          ::"i"(offsetof(struct rcx_brick, vm.sound.count)), "i"(offsetof(struct rcx_brick, vm.out.pause)),
                          "i"(offsetof(struct rcx_brick, vm.remote.tx_len)));
     RCX_RAMVEC(RCX_VEC_OCIA) = (u16)(unsigned)rcx_timer_irq;
-    RCX_RAMVEC(RCX_VEC_ADI) = (u16)(unsigned)rcx_timer_irq;
     drv_outputs_on();
     rt_init(&brick, (u16)(unsigned)brick.vm.arena);
     drv_tick_start(1);

@@ -199,6 +199,7 @@ static void rotation_counts_every_millisecond_on_an_idle_brick(void **state)
 #define UNPOWERED_MAX (30 * H8M_CLOCK / 1000000)      /* 30 µs off in each millisecond, as brickOS */
 static void active_inputs_are_read_just_after_their_power_is_removed(void **state)
 {
+    struct h8m_sensor seen[3];
     uint8_t input, reply[3];
     (void)state;
     for (input = 0; input < 3; input++) {
@@ -209,8 +210,9 @@ static void active_inputs_are_read_just_after_their_power_is_removed(void **stat
     assert_int_equal(h8m_run(&m, m.h.states + 10 * H8M_MS), 0);
     memset(m.sensor, 0, sizeof m.sensor);
     assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK), 0);
+    memcpy(seen, m.sensor, sizeof seen);
     for (input = 0; input < 3; input++) {
-        const struct h8m_sensor *s = &m.sensor[2 - input];
+        const struct h8m_sensor *s = &seen[2 - input];
         uint8_t raw[] = { 0x12, 12, input };
         print_message("input %u: %u removals, %u samplings (%u unpowered), %u missed, read %.2f us after the removal "
                       "at most, off %.2f us at most\n", input + 1, s->offs, s->samples, s->unpowered, s->missed,
