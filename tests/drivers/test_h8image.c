@@ -126,8 +126,8 @@ static void debounce_as_compiled(void **state)
     memset(&d, 0, sizeof d);
     memset(h.mem + H8_SCRATCH, 0, sizeof d);
     for (unsigned i = 0; i < 5000; i++) {
-        u8 raw = (u8)(rnd() % 16 < 13 ? d.state ^ (i / 37 % 2 ? 0x05 : 0) : rnd() & 15);
-        assert_int_equal((u8)h8_run(&h, "_hw_debounce", H8_SCRATCH, raw, 0, NULL, 0), hw_debounce(&d, raw));
+        u8 raw = (u8)(rnd() % 16 < 13 ? d.state ^ (i / 37 % 2 ? 0x05 : 0) : rnd() & 15), now = (u8)(i / 3 + i / 7);
+        assert_int_equal((u8)h8_run(&h, "_hw_debounce", H8_SCRATCH, raw, now, NULL, 0), hw_debounce(&d, raw, now));
         assert_memory_equal(h.mem + H8_SCRATCH, &d, sizeof d);
     }
 }

@@ -303,6 +303,55 @@ static void a_message_a_task_sends_while_another_spins_goes_out_at_once(void **s
     assert_true(m.sent_at[from] + 2 * H8M_MS > m.latch_at && m.sent_at[from] < m.latch_at + 2 * H8M_MS);
 }
 
+/*
+ * Issue 15 item 6: buttons are debounced on the brick's clock. The main loop looks at them once for each millisecond
+ * it handles, and after a pass that took long it handles the milliseconds it owes one after another, microseconds
+ * apart: DeleteAllTasks with full program slots keeps it busy for some 70 ms. A contact that bounces then (Prgm down
+ * 1 ms, up 0.5 ms, down 1.5 ms, released) is seen many times in those few milliseconds, and were the looks counted
+ * instead of the time, it would pass for a press and select the next program slot; it must not. A press held
+ * 30 ms still does.
+ */
+static void a_bounce_while_the_main_loop_catches_up_is_no_press(void **state)
+{
+    static const uint8_t del[] = { 0x40 }, slot[] = { 0x12, 8, 0 };
+    uint8_t code[56], select[2] = { 0x91, 0 }, reply[3];
+    unsigned i, from;
+    unsigned long long t;
+    (void)state;
+    for (i = 0; i < 55; i += 5) { /* var 1 = 1, eleven times */
+        code[i] = 0x14;
+        code[i + 1] = 1;
+        code[i + 2] = 2;
+        code[i + 3] = 1;
+        code[i + 4] = 0;
+    }
+    code[55] = 0x95;
+    for (select[1] = 5; select[1]--;) {
+        assert_int_equal(h8m_transact(&m, select, sizeof select, NULL, 1, NULL), 0);
+        for (i = 0; i < 10; i++)
+            assert_int_equal(h8m_download_task(&m, (uint8_t)i, code, sizeof code), 0);
+    }
+    from = m.nsent;
+    h8m_command(&m, del, sizeof del);
+    while (m.nsent == from) /* the reply starts once the deletion is done: the main loop owes milliseconds */
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_MS / 10), 0);
+    t = m.h.states;
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 1, t), 0);
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 0, t + H8M_MS), 0);
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 1, t + 3 * H8M_MS / 2), 0);
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 0, t + 3 * H8M_MS), 0);
+    assert_int_equal(h8m_reply(&m, from, 1, NULL, H8M_CLOCK), 0);
+    assert_int_equal(h8m_run(&m, m.h.states + 50 * H8M_MS), 0);
+    assert_int_equal(h8m_transact(&m, slot, sizeof slot, reply, 3, NULL), 0);
+    assert_int_equal(reply[1], 0);
+    t = m.h.states;
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 1, t), 0);
+    assert_int_equal(h8m_button(&m, H8M_PRGM, 0, t + 30 * H8M_MS), 0);
+    assert_int_equal(h8m_run(&m, t + 100 * H8M_MS), 0);
+    assert_int_equal(h8m_transact(&m, slot, sizeof slot, reply, 3, NULL), 0);
+    assert_int_equal(reply[1], 1);
+}
+
 static void idle_brick_sleeps_between_ticks(void **state)
 {
     unsigned long long t0 = m.h.states, s0 = m.slept;
@@ -331,6 +380,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(rotation_counts_every_millisecond_while_tasks_spin),
         cmocka_unit_test(rotation_counts_every_millisecond_on_an_idle_brick),
         cmocka_unit_test_setup(active_inputs_are_read_just_after_their_power_is_removed, boot),
+        cmocka_unit_test_setup(a_bounce_while_the_main_loop_catches_up_is_no_press, boot),
     };
     if (argc != 3)
         return 2;
