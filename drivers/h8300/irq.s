@@ -22,9 +22,10 @@
 ; starts over after each pass (66 us) until ADST is cleared, each data register holding its channel's latest
 ; result, never older than a pass. The tick reads them as they are, without stopping it, and starts the scan only
 ; if it is not running with a pass made (start-up, wake-up, or stopped below). That costs the idle tick nothing (no
-; A/D interrupt, no restart); the price is the converter's own supply current while the brick is on (its tables
-; give about 0.5 mA). Reading a register while the scan writes it is safe: a word read takes the low byte from the
-; copy latched as the high byte is read.
+; A/D interrupt, no restart); the price is the converter's own supply current while the brick is on (about 0.5 mA
+; typical in the tables of later H8 parts; the H8/3292's was not found). Reading a register while the scan writes
+; it is safe: a word read (high byte first, rcx-hardware.md 3.3) takes the low byte from the copy latched with the
+; high one.
 ;
 ; An active sensor (light, rotation) must be read unpowered, a few us after its own power is removed, as brickOS
 ; reads it (its rotation thresholds are tuned for that: rcx-hardware.md 3.3). At such a tick the scan is stopped,
@@ -32,7 +33,8 @@
 ; awaited (ADF, 259-266 states), its power on again. Its input is sampled from tD = 10-17 states after the start
 ; for tSPL = 63 states: held 82-89 states (5.1-5.6 us) after the power went off (the write to ADCSR is the next
 ; instruction, 9 states on), and it is off for about 20 us in each millisecond (brickOS: 20-30 us, the LEGO ROM
-; some 70). Each such input costs the tick about 300 states. Then the slot is stored, with the single results for
+; some 70). Each such input costs the tick about 300 states, during which other interrupts wait (at most some
+; 60 us with three: a byte takes 4.6 ms at 2400 Bd). Then the slot is stored, with the single results for
 ; the active inputs and the scan's for the others, and the scan started again. Its passes convert the active inputs'
 ; channels while they are powered: those results are never used, as the tick converts them afresh before storing.
 _rcx_timer_irq:
