@@ -27,8 +27,8 @@ RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
     hw_motor_set(&drv_motors, port, mode, level); /* the tick interrupt writes the latch within 1 ms */
 }
 
-/* The A/D interrupt applies the mask after each scan, the tick interrupt removes power before the next while
- * any input has it; an input no longer in the mask is unpowered here, at once. */
+/* The tick interrupt removes each input's power in the mask for its conversion and applies it again after (irq.s);
+ * an input no longer in the mask is unpowered here, at once. */
 RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
     u8 bit, power;
