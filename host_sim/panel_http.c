@@ -450,8 +450,7 @@ struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, c
     pthread_sigmask(SIG_BLOCK, &block, &old);
     p->daemon = MHD_start_daemon(flags, (uint16_t)port, NULL, NULL, route, p, MHD_OPTION_SOCK_ADDR, &addr,
                                  MHD_OPTION_CONNECTION_LIMIT, (unsigned)PANEL_CONNECTIONS,
-                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S),
-                                 MHD_OPTION_LISTENING_ADDRESS_REUSE, 1, MHD_OPTION_END);
+                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S), MHD_OPTION_END);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (!p->daemon) {
         snprintf(err, errlen, "cannot listen on %s port %u (in use?)", bind_addr, port);

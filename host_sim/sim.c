@@ -48,6 +48,28 @@ static void usage(FILE *f)
           f);
 }
 
+/* The options that take a value, and what the value must be: for the one-line refusals. */
+static const char *value_wanted(const char *option)
+{
+    static const char *const wanted[][2] = {
+        { "--tty", "a path for the tower's link, once per brick (at most 8)" },
+        { "--bricks", "a number of bricks, 1-8" },
+        { "--speed", "a factor above 0" },
+        { "--rate", "a number of byte codes above 0, or brick" },
+        { "--script", "a file" },
+        { "--trace", "a file, or - for the standard output" },
+        { "--load", "[B@]FILE.rcx[:SLOT] with SLOT 1-5 (at most 64 images)" },
+        { "--duration", "a number of milliseconds above 0" },
+        { "--panel", "a port, 0-65535" },
+        { "--panel-bind", "an IPv4 or IPv6 address" },
+    };
+    size_t i;
+    for (i = 0; i < sizeof wanted / sizeof wanted[0]; i++)
+        if (strcmp(option, wanted[i][0]) == 0)
+            return wanted[i][1];
+    return NULL;
+}
+
 void sim_start_firmware(struct sim_brick *b)
 {
     b->mode = SIM_FIRMWARE;
@@ -93,7 +115,11 @@ static int load_image(struct sim *s, const char *spec)
         spec = strchr(spec, '@') + 1;
     }
     colon = strrchr(spec, ':');
-    if (colon && colon[1] >= '1' && colon[1] <= '5' && colon[2] == 0) {
+    if (colon && colon[1] && strspn(colon + 1, "0123456789") == strlen(colon + 1)) {
+        if (colon[1] < '1' || colon[1] > '5' || colon[2]) {
+            fprintf(stderr, "rcxsim: --load %s: no program slot %s (slots are 1-5)\n", spec, colon + 1);
+            return -1;
+        }
         slot = colon[1] - '1';
     } else {
         colon = NULL;
@@ -257,8 +283,12 @@ int main(int argc, char **argv)
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
             return 0;
+        } else if (!value_wanted(a)) {
+            fprintf(stderr, "rcxsim: %s: %s\n", a,
+                    a[0] == '-' ? "unknown option (rcxsim --help lists them)" : "unexpected argument (options start with --)");
+            return 2;
         } else if (!v) {
-            usage(stderr);
+            fprintf(stderr, "rcxsim: %s: needs %s\n", a, value_wanted(a));
             return 2;
         } else {
             i++;
@@ -283,20 +313,20 @@ int main(int argc, char **argv)
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
                 duration = (sim_us)atol(v) * 1000;
             } else {
-                fprintf(stderr, "rcxsim: bad option %s %s\n", a, v);
-                usage(stderr);
+                fprintf(stderr, "rcxsim: %s %s: expected %s\n", a, v, value_wanted(a));
                 return 2;
             }
         }
     }
     if (nttys > s->nbricks) {
-        fprintf(stderr, "rcxsim: more --tty than bricks\n");
+        fprintf(stderr, "rcxsim: --tty: %d given, more than the %d brick%s (--bricks N)\n", nttys, s->nbricks,
+                s->nbricks == 1 ? "" : "s");
         return 2;
     }
     if (trace) {
         s->trace = strcmp(trace, "-") == 0 ? stdout : fopen(trace, "w");
         if (!s->trace) {
-            perror(trace);
+            fprintf(stderr, "rcxsim: --trace %s: %s\n", trace, strerror(errno));
             return 2;
         }
         setvbuf(s->trace, NULL, _IOLBF, 0); /* lines appear as they happen: others watch the trace live */
