@@ -42,8 +42,9 @@ static unsigned line_mode(struct tower *t)
         return 0;
     if (!t->told_fast) {
         t->told_fast = 1;
-        fprintf(stderr, "rcxsim: --tty %s: the host sends at 4800 baud (firmdl3's fast mode, nqc -firmfast); the "
-                        "virtual RCX hears only 2400: use firmdl3 --slow or nqc -firmware\n", t->path);
+        fprintf(stderr, "rcxsim: --tty %s: the host switched to 4800 baud (firmdl3's fast mode, nqc -firmfast): fast "
+                        "mode is not available, the virtual RCX stays at 2400; use firmdl3 --slow or nqc -firmware\n",
+                t->path);
     }
     return HAL_IR_4800;
 }

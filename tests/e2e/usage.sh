@@ -24,6 +24,8 @@ refused "zero speed" --speed --speed 0
 refused "nine bricks" --bricks --bricks 9
 refused "two ttys, one brick" --tty --tty "$WORK/a" --tty "$WORK/b"
 refused "slot 9" "slot 9" --load "$WORK/prog.rcx:9"
+refused "hub without address" --tcp-join --tcp-join
+refused "hub port too large" --tcp --tcp 127.0.0.1:65536
 refused "missing script" --script --script "$WORK/none.txt"
 refused "trace nowhere" --trace --trace "$WORK/no/such/dir/trace.jsonl"
 printf '100 sensor 4 raw 10\n' >"$WORK/s1"
