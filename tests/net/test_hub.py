@@ -7,8 +7,11 @@
   clients16    16 clients at once: each pings in turn, each hears every ping and every reply
   join         rcxsim --tcp-join against a second rcxsim --tcp: messages cross between the rooms both ways, the
                hub's echo does not come back into the joining room, and its tower works beside the link
+  together     with --tty (the real nqc on a tower), --bricks 2, --panel, --speed: one room
   refused      a port in use, an address that cannot be bound, a hub that is not there: one line, exit status 2
 """
+import http.client
+import json
 import os
 import random
 import socket
@@ -160,6 +163,44 @@ def case_join():
             os.unlink(p)
 
 
+def case_together():
+    tmp = os.environ.get("NET_TMP", "/tmp")
+    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%d.rcx" % os.getpid()))
+    press = os.path.join(tmp, "press1.%d.txt" % os.getpid())
+    with open(press, "w") as f:
+        f.write("0 @1 button run down\n50 @1 button run up\n")
+    try:
+        with Hub("--speed", "10", "--bricks", "2", "--load", "1@" + answer, "--script", press, "--panel", "0",
+                 "--tty", os.path.join(tmp, "tty.%d" % os.getpid())) as hub:
+            tty = os.path.join(tmp, "tty.%d" % os.getpid())
+            wait_for("the tower", lambda: os.path.exists(tty), seconds=10)
+            panel = wait_for("the panel's address", lambda: [int(l.rsplit(":", 1)[1].strip(" /\n"))
+                                                           for l in hub.messages().splitlines()
+                                                           if "panel at http://127.0.0.1:" in l], seconds=10)[0]
+            a = hub.client()
+            # The real nqc on brick 0's tower downloads and runs a program that sends messages 9 and 11.
+            sender = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "e2e", "sender.nqc")
+            r = subprocess.run([NQC, "-S" + tty, "-TRCX2", "-d", sender, "-run"], capture_output=True, timeout=60)
+            check(r.returncode == 0, "nqc on the tower: %r" % r.stderr)
+            wait_for("brick 0's messages 9 and 11 on the network",
+                     lambda: (a.read(0.1), frame([0xF7, 9]) in a.heard and frame([0xF7, 11]) in a.heard)[1])
+            check(frame([0x71, 0]) not in a.heard and frame([0x79, 0]) not in a.heard,
+                  "the tower's commands reached the network (a tower faces its brick)")
+            # From the network to brick 1, whose answer reaches the network and brick 0.
+            a.write(MSG5)
+            wait_for("brick 1's answer", lambda: (a.read(0.1), MSG6 in a.heard)[1])
+            r = subprocess.run([NQC, "-S" + tty, "-raw", "120f00"], capture_output=True, timeout=30)
+            check(r.stdout.split() == [b"06", b"00"], "brick 0's last message: %r, expected 6" % r.stdout)
+            c = http.client.HTTPConnection("127.0.0.1", panel, timeout=10)
+            c.request("GET", "/state")
+            state = json.loads(c.getresponse().read())
+            check(state["bricks"][1]["ir"]["out"] > 0 and state["bricks"][0]["ir"]["in"] > 0,
+                  "the panel does not show the IR traffic: %r" % state)
+    finally:
+        os.unlink(answer)
+        os.unlink(press)
+
+
 def refused(what, args, words):
     r = subprocess.run([RCXSIM, "--fast", "--duration", "100"] + args, capture_output=True, timeout=30)
     err = r.stderr.decode("utf-8", "replace")
@@ -192,6 +233,7 @@ CASES = {
     "garbage": case_garbage,
     "clients16": case_clients16,
     "join": case_join,
+    "together": case_together,
     "refused": case_refused,
 }
 
