@@ -244,7 +244,7 @@ int net_hub_open(struct room *r, const char *spec, char *err, size_t errlen)
     fd = socket(ai->ai_family, ai->ai_socktype | SOCK_CLOEXEC, ai->ai_protocol);
     /* SO_REUSEADDR only lets a restarted hub past the old one's closing connections; a port in use stays in use. */
     if (fd < 0 || setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) || bind(fd, ai->ai_addr, ai->ai_addrlen) ||
-        listen(fd, 16) || getsockname(fd, (struct sockaddr *)&bound, &boundlen)) {
+        listen(fd, NET_MAX_CLIENTS) || getsockname(fd, (struct sockaddr *)&bound, &boundlen)) {
         snprintf(err, errlen, "%s", strerror(errno));
         if (fd >= 0)
             close(fd);

@@ -8,11 +8,8 @@ command; a command that gets no reply is sent again, identical, up to 4 times; a
 one is sent with bit 3 flipped. Every wait here is bounded, and rcxsim is stopped (by its own pid) however a test
 ends.
 """
-import ctypes
 import os
 import select
-import signal
-import shutil
 import socket
 import struct
 import subprocess
@@ -20,35 +17,10 @@ import sys
 import tempfile
 import time
 
-RCXSIM = os.environ["RCXSIM"]
-NQC = os.environ.get("NQC", "nqc")
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def fail(msg):
-    print("FAIL: " + msg, file=sys.stderr)
-    sys.exit(1)
-
-
-def check(cond, msg):
-    if not cond:
-        fail(msg)
-
-
-def _die_with_parent():
-    """In the child: should the test itself be killed (CTest's timeout), the simulator goes too."""
-    ctypes.CDLL(None, use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-
-
-def wait_for(what, probe, seconds=10.0, every=0.05):
-    end = time.monotonic() + seconds
-    last = None
-    while time.monotonic() < end:
-        last = probe()
-        if last:
-            return last
-        time.sleep(every)
-    fail("timed out waiting for %s (last: %r)" % (what, last))
+# The panel tests' helpers: messages, bounded waits, the simulator dying with the test.
+sys.path.insert(0, os.path.join(HERE, "..", "panel"))
+from panel_lib import NQC, RCXSIM, Sim, _die_with_parent, check, fail, wait_for  # noqa: E402,F401
 
 
 def frame(payload):
@@ -82,9 +54,9 @@ def compile_rcx(source, out):
     return out
 
 
-class Hub:
+class Hub(Sim):
     """rcxsim --tcp 127.0.0.1:0 (a port the system picks) with the given options; the port is read from what it
-    prints."""
+    prints. Or, with tcp=("--tcp-join", ...), an rcxsim that joins a hub. Stopped as the panel tests' Sim."""
 
     def __init__(self, *args, tcp=("--tcp", "127.0.0.1:0")):
         self.work = tempfile.mkdtemp(prefix="net.", dir=os.environ.get("NET_TMP"))
@@ -106,33 +78,8 @@ class Hub:
     def messages(self):
         return open(self.err_path).read()
 
-    def alive(self):
-        return self.proc.poll() is None
-
     def client(self):
         return Client(self.port)
-
-    def stop(self):
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
-                fail("rcxsim did not stop on SIGTERM within 10 s")
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, kind, value, tb):
-        if self.proc.poll() is None:
-            self.proc.kill()
-            self.proc.wait()
-        self.err.close()
-        if kind is not None or os.environ.get("NET_VERBOSE"):
-            sys.stderr.write("--- rcxsim's messages:\n" + open(self.err_path).read())
-        shutil.rmtree(self.work, ignore_errors=True)
 
 
 class Client:

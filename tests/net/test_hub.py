@@ -211,7 +211,7 @@ def refused(what, args, words):
 
 
 def case_refused():
-    with Hub("--fast") as hub:
+    with Hub("--speed", "10") as hub:
         spec = "127.0.0.1:%d" % hub.port
         refused("port in use", ["--tcp", spec], ["--tcp " + spec, "in use"])
         check(hub.alive(), "the first hub went away")
