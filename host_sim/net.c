@@ -12,8 +12,8 @@
  * the bytes it sent, which go on the air (nqc -msg writes and closes at once).
  *
  * Joining a hub, the room is one client: what the room's bricks (and script) send goes to the hub, and what the hub
- * sends goes on the air from one port (not back to the hub), except the hub's echo of our own bytes (recognised in order, also garbled as
- * this hub garbles a collided byte).
+ * sends goes on the air from one port (not back to the hub), except the hub's echo of our own bytes, recognised in
+ * order, also when garbled as this hub garbles a collided byte.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>

@@ -48,7 +48,8 @@ static void usage(FILE *f)
           "  --duration MS      stop after MS simulated milliseconds\n"
           "  --panel PORT       the bricks live in a browser at http://127.0.0.1:PORT/ (0: any free port)\n"
           "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n"
-          "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT ", 0: any port)\n"
+          "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT
+          ", 0: any port)\n"
           "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n",
           f);
 }
@@ -126,7 +127,7 @@ static int load_image(struct sim *s, const char *spec)
 {
     char path[4096], err[256];
     const char *colon;
-    int brick = 0, slot = -1;
+    int brick = 0, slot = -1, status = 0;
     struct rcx_image *img;
     u8 *data;
     size_t size;
@@ -153,14 +154,15 @@ static int load_image(struct sim *s, const char *spec)
     img = malloc(sizeof *img);
     if (!img)
         abort();
+    data = NULL;
     if (rcx_image_read_file(path, &data, &size, err, sizeof err) || rcx_image_parse(img, data, size, err, sizeof err) ||
         rcx_image_load(&s->brick[brick]->k.vm, img, slot, err, sizeof err)) {
         fprintf(stderr, "rcxsim: --load %s: %s\n", path, err);
-        return -1;
+        status = -1;
     }
     free(data);
     free(img);
-    return 0;
+    return status;
 }
 
 /* An input (script or panel) takes effect now. */
@@ -313,7 +315,8 @@ int main(int argc, char **argv)
             return 0;
         } else if (!value_wanted(a)) {
             fprintf(stderr, "rcxsim: %s: %s\n", a,
-                    a[0] == '-' ? "unknown option (rcxsim --help lists them)" : "unexpected argument (options start with --)");
+                    a[0] == '-' ? "unknown option (rcxsim --help lists them)"
+                                : "unexpected argument (options start with --)");
             return 2;
         } else if (!v) {
             fprintf(stderr, "rcxsim: %s: needs %s\n", a, value_wanted(a));

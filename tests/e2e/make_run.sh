@@ -8,5 +8,6 @@ PANEL_PORT=$port timeout -s INT 15 sh "$E2E_DIR/../../host_sim/demo.sh" "$(dirna
     status=$?
 [ $status -eq 124 ] || fail "the demo ended by itself (status $status): $(cat "$WORK/out")"
 grep -q 'Downloading Program' "$WORK/out" || fail "no nqc progress line: $(cat "$WORK/out")"
-grep 'Downloading Program' "$WORK/out" | grep -q -v '{' || fail "the trace cut into nqc's progress line: $(grep 'Downloading' "$WORK/out")"
+grep 'Downloading Program' "$WORK/out" | grep -q -v '{' ||
+    fail "the trace cut into nqc's progress line: $(grep 'Downloading' "$WORK/out")"
 grep -q '^{"t":[0-9]*,"brick":0,"motor"' "$WORK/out" || fail "no trace lines shown: $(cat "$WORK/out")"

@@ -15,7 +15,8 @@ while IFS= read -r line; do
 done <"$WORK/compiles"
 
 # The virtual RCX's example with its own tty and a program only an RCX 2.0 has.
-example=$(grep -m 1 -E '^nqc -S/tmp/rcx .*prog\.nqc' "$WORK/compiles") || fail "no 'nqc -S/tmp/rcx ... prog.nqc' example"
+example=$(grep -m 1 -E '^nqc -S/tmp/rcx .*prog\.nqc' "$WORK/compiles") ||
+    fail "no 'nqc -S/tmp/rcx ... prog.nqc' example"
 cat >"$WORK/prog.nqc" <<'NQC'
 int shown;
 task main()
