@@ -35,9 +35,13 @@ void panel_snapshot(const struct sim_brick *b, struct panel_brick *out);
 size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n);
 
 /* panel_http.c */
+#define PANEL_QUEUE 64            /* inputs waiting for the simulation thread */
 struct panel;
 struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, char *err, size_t errlen);
-void panel_sync(struct panel *p, struct sim *s); /* simulation thread, every simulated ms */
+/* Simulation thread, every simulated ms: takes the inputs the pages queued (at most PANEL_QUEUE) for the caller to
+ * apply, then, with how many it applied, snapshots the bricks and answers the requests that wait for them. */
+unsigned panel_take_inputs(struct panel *p, struct sim_event *ev);
+void panel_sync(struct panel *p, const struct sim *s, unsigned applied);
 void panel_stop(struct panel *p);
 
 #endif
