@@ -33,6 +33,8 @@ static void on_signal(int sig)
 static void usage(FILE *f)
 {
     fputs("usage: rcxsim [options]\n"
+          "  -h, --help         this list, and exit\n"
+          "  --version          the version of OpenRCX, and exit\n"
           "  --tty PATH         a serial IR tower on a pseudo-terminal, PATH a symlink to it; once per brick\n"
           "  --bricks N         N bricks (1-8) in one IR room\n"
           "  --speed X          X times real time (default 1)\n"
@@ -256,6 +258,9 @@ int main(int argc, char **argv)
             rom = 1;
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            puts("rcxsim (OpenRCX) " RCXSIM_VERSION);
             return 0;
         } else if (!v) {
             usage(stderr);
