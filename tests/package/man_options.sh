@@ -5,7 +5,7 @@
 set -eu
 rcxsim="$1" groff="$2" page="$3"
 tags() { # the options that begin indented lines, one per line, sorted
-    awk '/^[ \t]+-/ { for (i = 1; i <= NF; i++) { o = $i; more = sub(/,$/, "", o); print o; if (!more) break } }' |
+    awk '/^[ \t]+-/ { for (i = 1; i <= NF; i++) { o = $i; more = sub(/,$/, "", o); sub(/=.*/, "", o); print o; if (!more) break } }' |
         sort -u
 }
 help=$("$rcxsim" --help | tags)
