@@ -34,6 +34,9 @@ void panel_snapshot(const struct sim_brick *b, struct panel_brick *out);
 /* The JSON of GET /state; returns its length, or 0 when it does not fit in `size`. */
 size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n);
 
+/* panel_files.c: the folder of the page's files (index.html, ...) */
+const char *panel_files_dir(void);
+
 /* panel_http.c */
 #define PANEL_QUEUE 64            /* inputs waiting for the simulation thread */
 struct panel;

@@ -149,7 +149,7 @@ static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, con
     char *data;
     size_t n;
 
-    snprintf(path, sizeof path, "%s/%s", RCXSIM_PANEL_FILES, name);
+    snprintf(path, sizeof path, "%s/%s", panel_files_dir(), name);
     f = fopen(path, "rb");
     if (!f)
         return refuse(c, MHD_HTTP_NOT_FOUND, "page file missing from the installation");

@@ -36,6 +36,8 @@ static void on_signal(int sig)
 static void usage(FILE *f)
 {
     fputs("usage: rcxsim [options]\n"
+          "  -h, --help         this list, and exit\n"
+          "  --version          the version of OpenRCX, and exit\n"
           "  --tty PATH         a serial IR tower on a pseudo-terminal, PATH a symlink to it; once per brick\n"
           "  --bricks N         N bricks (1-8) in one IR room\n"
           "  --speed X          X times real time (default 1)\n"
@@ -312,6 +314,9 @@ int main(int argc, char **argv)
             tcp = v && v[0] != '-' ? argv[++i] : ""; /* the value is optional */
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            puts("rcxsim (OpenRCX) " RCXSIM_VERSION);
             return 0;
         } else if (!value_wanted(a)) {
             fprintf(stderr, "rcxsim: %s: %s\n", a,
