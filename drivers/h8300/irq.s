@@ -136,9 +136,12 @@ _rcx_timer_irq:
 	beq	2f
 	bclr	r1h,@0xbb:8		; P6DR: the sensor unpowered ...
 	mov.b	r1h,@0xe8:8		; ... and its channel converted at once
+	sub.b	r2l,r2l
 1:	mov.b	@0xe8:8,r1l
-	bpl	1b			; until ADF
-	bset	r1h,@0xbb:8		; powered again
+	bmi	3f			; until ADF, or 256 looks (some 0.4 ms): a converter that never ends (none
+	dec	r2l			; does; brickEmu did) must not hold the brick in its tick
+	bne	1b
+3:	bset	r1h,@0xbb:8		; powered again
 2:	inc	r1h
 	cmp.b	#0x23,r1h
 	bne	.Lnext

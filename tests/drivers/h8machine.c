@@ -245,7 +245,7 @@ static void ad_write(struct h8machine *m, uint8_t was, uint8_t now)
     uint8_t adf = (uint8_t)(was & ADF & ~(m->ad_read && !(now & ADF) ? ADF : 0));
     m->ad_read = 0;
     m->h.mem[AD_ADCSR] = (uint8_t)((now & ~ADF) | adf);
-    if (!(now & ADST)) {
+    if (!(now & ADST) || m->ad_broken) {
         m->ad_at = m->ad_spl_at = 0;
     } else if (!(was & ADST)) {
         m->ad_ch = now & SCAN ? now & 4 : now & 7;

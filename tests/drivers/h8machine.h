@@ -55,6 +55,8 @@ struct h8machine {
     int ad_new;                             /* a conversion was started: the next event may be sooner */
     uint16_t ad_held;                       /* the level it sampled (raw10) */
     uint16_t ad_raw[4];                     /* raw10 of AN0-AN3 (inputs 3, 2, 1, battery) */
+    int ad_broken;                          /* if set, a conversion started never ends: a fault no converter has,
+                                             * but the firmware must not hang on it */
     void (*ad_input)(struct h8machine *m, unsigned ch); /* if set, called as each sampling of channel ch ends,
                                              * before ad_raw[ch] is taken */
     uint8_t sensor_power;                   /* bit n: P6.n an output at 1, the sensor on ANn powered */

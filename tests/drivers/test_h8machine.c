@@ -228,6 +228,25 @@ static void active_inputs_are_read_just_after_their_power_is_removed(void **stat
     }
 }
 
+/* A converter whose conversions never end (none does; an emulator's did): the tick waits for each active input's
+ * for a bounded time, so the brick keeps its clock and answers. */
+static void a_conversion_that_never_ends_does_not_hang_the_brick(void **state)
+{
+    static const uint8_t rotation[] = { 0x32, 0, 4 }, ping[] = { 0x10 };
+    unsigned long long ms, lat;
+    unsigned i;
+    (void)state;
+    assert_int_equal(h8m_transact(&m, rotation, sizeof rotation, NULL, 1, NULL), 0);
+    m.ad_broken = 1;
+    ms = m.ms_seen;
+    assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK), 0);
+    assert_true(m.ms_seen - ms >= 999);
+    for (i = 0; i < 3; i++) {
+        assert_int_equal(h8m_transact(&m, ping, 1, NULL, 1, &lat), 0);
+        assert_true(lat < LATENCY_MAX);
+    }
+}
+
 /*
  * While a task spins and nothing else is going on, the main loop lets the quiet milliseconds of each 10 ms step
  * pass without ending the run (drv_quiet). What a task starts meanwhile that the clock must see at once ends it:
@@ -557,6 +576,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(rotation_counts_every_millisecond_while_tasks_spin),
         cmocka_unit_test(rotation_counts_every_millisecond_on_an_idle_brick),
         cmocka_unit_test_setup(active_inputs_are_read_just_after_their_power_is_removed, boot),
+        cmocka_unit_test_setup(a_conversion_that_never_ends_does_not_hang_the_brick, boot),
         cmocka_unit_test_setup(a_bounce_while_the_main_loop_catches_up_is_no_press, boot),
         cmocka_unit_test(serial_port_waits_a_bit_time_before_it_is_enabled),
     };
