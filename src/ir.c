@@ -214,6 +214,8 @@ void ir_poll(struct rcx_brick *k)
             k->ir.tx_pack = k->vm.remote.tx_pack;
             k->ir.tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
+            if (RCX_SWAN)
+                remote_sent(&k->vm); /* a message after its parameter (vm/remote.h) */
             display_ir_activity(&k->vm);
         }
         if (len)

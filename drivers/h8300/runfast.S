@@ -118,11 +118,6 @@ srcvar:	mov.b	r0h,r0h			; RF_SRC_VAR: a global variable's value
 	mov.w	@(RF_GLOBAL,r3),r3
 	bra	vref
 
-local:	add.w	r5,r0			; t + RF_LOCAL + 2 * (v - 32), less RF_GLOBAL
-	add.b	#(RF_LOCAL-2*RF_GLOBALS-RF_GLOBAL)&0xFF,r0l
-	addx	#((RF_LOCAL-2*RF_GLOBALS-RF_GLOBAL)>>8)&0xFF,r0h
-	bra	apply
-
 slow5:	subs	#2,r1			; back to the opcode
 	subs	#2,r1
 	subs	#1,r1
@@ -141,10 +136,12 @@ var:	add.b	#5,r1l			; v op= source: 5 bytes, and the code goes on after them
 	mov.b	@(-1,r1),r3h
 	cmp.b	#RF_SRC_CONST,r0h
 	bne	srcvar			; else the constant
-vref:	mov.b	#0,r0h
+vref:	cmp.b	#RF_GLOBALS,r0l
+	bcs	1f
+	mov.b	@(RF_LOCAL_BASE,r5),r0h	; 32-47: global v + t->local_base (at most 191)
+	add.b	r0h,r0l
+1:	mov.b	#0,r0h
 	add.w	r0,r0
-	cmp.b	#2*RF_GLOBALS,r0l
-	bcc	local
 	add.w	r6,r0			; the variable at @(RF_GLOBAL,r0)
 apply:	cmp.b	#RF_OP_SUM_VAR,r4l
 	beq	3f
@@ -161,8 +158,7 @@ apply:	cmp.b	#RF_OP_SUM_VAR,r4l
 	bra	done
 
 dispatch:
-	mov.b	@r1,r4l
-	and.b	#~RF_TOGGLE,r4l
+	mov.b	@r1,r4l			; all eight bits: 0x2C and 0x2F are Swan's, not SumVar and SJump
 	cmp.b	#RF_OP_SJUMP,r4l
 	beq	sjump
 	cmp.b	#RF_OP_SUM_VAR,r4l

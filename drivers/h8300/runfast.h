@@ -10,13 +10,13 @@
 #define RF_RR 0xC5         /* rr (u8) */
 #define RF_RUNMASK 0xC6    /* runmask (u16) */
 #define RF_YIELD 0xC8      /* yield (u8) */
-#define RF_GLOBAL 0xCA     /* global[] */
-#define RF_TASK 0x10A      /* task[] */
-#define RF_ARENA 0x5BA     /* arena[]; obj_start[] is at 0 */
-#define RF_TASK_SIZE 60    /* sizeof(struct rcx_task) */
+#define RF_GLOBAL 0xCC     /* global[] */
+#define RF_TASK 0x24C      /* task[] */
+#define RF_ARENA 0x5E2     /* arena[]; obj_start[] is at 0 */
+#define RF_TASK_SIZE 0x1E    /* sizeof(struct rcx_task) */
 #define RF_SUB 1           /* struct rcx_task: sub (u8) */
 #define RF_PC 2            /* pc (u16) */
-#define RF_LOCAL 16        /* local[] */
+#define RF_LOCAL_BASE 16   /* local_base (u8) */
 
 #define RF_TASKS 10        /* RCX_TASKS */
 #define RF_SUBS 8          /* RCX_SUBS: a slot's objects are its subroutines, then its tasks */

@@ -76,7 +76,8 @@ static uint16_t img16(uint16_t a) { return (uint16_t)(h.mem[a] << 8 | h.mem[(uin
 static const struct { unsigned at, size, width; const char *name; } task_fields[] = {
     TASK_FIELD(state, 1),     TASK_FIELD(sub, 1),       TASK_FIELD(pc, 2),         TASK_FIELD(has_ret, 1),
     TASK_FIELD(ret_sub, 1),   TASK_FIELD(ret_pc, 2),    TASK_FIELD(wake, 2),       TASK_FIELD(priority, 1),
-    TASK_FIELD(loop_depth, 1), TASK_FIELD(loop, 1),     TASK_FIELD(local, 2),      TASK_FIELD(ev.events, 2),
+    TASK_FIELD(loop_depth, 1), TASK_FIELD(loop, 1),     TASK_FIELD(local_base, 1), TASK_FIELD(spare, 1),
+    TASK_FIELD(ev.events, 2),
     TASK_FIELD(ev.mon, 2),    TASK_FIELD(ev.ev_pc, 2),  TASK_FIELD(ev.ac_pc, 2),   TASK_FIELD(ev.ev_sub, 1),
     TASK_FIELD(ev.ac_sub, 1), TASK_FIELD(ev.rc, 1),     TASK_FIELD(ev.state, 1),
 };
@@ -85,7 +86,7 @@ static const struct { unsigned at, size, width; const char *name; } task_fields[
 static void compare(const char *when)
 {
     unsigned i, f, k;
-    for (i = 0; i < RCX_GLOBALS; i++)
+    for (i = 0; i < RCX_ALL_GLOBALS; i++) /* RCX 2.0's globals and the tasks' locals (the image has no Swan) */
         if ((uint16_t)host.global[i] != img16((uint16_t)(brick + RF_GLOBAL + 2 * i)))
             fail_msg("%s: variable %u is %d on the host, %d in the image", when, i, host.global[i],
                      (int16_t)img16((uint16_t)(brick + RF_GLOBAL + 2 * i)));
