@@ -70,8 +70,13 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     struct rcx_task *t = &b->task[n];
     u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
     const u8 *ins;
+#if RCX_SWAN
     const struct rcx_swan_row *sw;
-    u8 op, i, jump = 0, len, flags, ms = 0;
+#endif
+    u8 op, i, jump = 0, len, flags;
+#if RCX_SWAN
+    u8 ms = 0;                         /* the wait is WaitMS's */
+#endif
     s16 value;
     s16 *var;
 
@@ -81,6 +86,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         goto stop;                     /* a task ends there */
     }
     ins = b->arena + at[0] + pc;
+#if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
         len = (u8)(sw->params & 7);
         if ((u16)(size - pc) <= len)
@@ -94,6 +100,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             return;
         goto stop;
     }
+#endif
     op = (u8)(ins[0] & ~RCX_TOGGLE);
     flags = rcx_opflags[rcx_op_index(op)];
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
@@ -198,18 +205,21 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             break;
         goto stop;
     case C_WAIT:
+#if RCX_SWAN
     wait:                              /* and Swan's WaitMS (ms = 1) */
+#endif
         value = ops_source(b, t, ins);
         if (value <= 0)
             break;                     /* negative: ignored (spec p. 67); zero: no wait */
         /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
-        if (!RCX_SWAN)
-            ms = 0;
-        t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
 #if RCX_SWAN
+        t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
         t->wait_ms = ms;
+        b->waiting |= (u8)(ms + 1);    /* WAIT_MS or WAIT_10MS */
+#else
+        t->wake = (u16)(b->ticks10 + (u16)value);
+        b->waiting = WAIT_10MS;
 #endif
-        b->waiting = RCX_SWAN ? (u8)(b->waiting | (ms + 1)) : WAIT_10MS; /* WAIT_MS or WAIT_10MS */
         sched_set_state(b, t, RCX_TASK_WAITING);
         break;
     case C_EXIT_EVENT:

@@ -155,8 +155,12 @@ void ops_set_message(struct rcx *b, u8 m)
 OP(op_clear_message) { UNUSED_T; UNUSED_INS; ops_set_message(b, 0); }
 OP(op_message)
 {
-    if (RCX_SWAN && !t) /* received: a plain message has parameter 0 (swan-target.md 4), one after a B3 that one's */
+#if RCX_SWAN
+    if (!t) /* received: a plain message has parameter 0 (swan-target.md 4), one after a B3 that one's */
         b->msg_param = remote_message_received(b, ins[1]);
+#else
+    UNUSED_T;
+#endif
     ops_set_message(b, ins[1]);
 }
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */

@@ -331,8 +331,10 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         *p = (u8)value;
     if (src == RCX_SRC_MESSAGE)
         events_message_changed(b);
-    if (RCX_SWAN && (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8))
+#if RCX_SWAN
+    if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
         swan_power(b, src, (u8)index, value);
+#endif
     if (src == RCX_SRC_COUNTER)
         events_counter_changed(b, (u8)index);
 }

@@ -20,14 +20,7 @@ gpoll() { # tty file name [element]
     poll "$1" 43 $(($(var "$2" "$3") + ${4:-0}))
 }
 wait_g() { # tty file name value what
-    n=0
-    while :; do
-        v=$(gpoll "$1" "$2" "$3")
-        [ "$v" = "$4" ] && return 0
-        n=$((n + 1))
-        [ $n -lt 25 ] || fail "$5: $3 is $v, expected $4"
-        sleep 0.2
-    done
+    wait_poll "$1" 43 "$(var "$2" "$3")" "$4" "$5"
 }
 
 RX="$E2E_DIR/swan_receiver.nqc"
