@@ -32,7 +32,7 @@ if(NOT DEFINED RCX_IMAGE_SWAN)
     set(RCX_IMAGE_SWAN 0)  # -DRCX_IMAGE_SWAN=1: an image with them, to measure it
 endif()
 set(CMAKE_C_FLAGS_INIT "-Os -fomit-frame-pointer -std=gnu99 -ffreestanding -Wall -Werror -DRCX_SWAN=${RCX_IMAGE_SWAN}")
-set(CMAKE_ASM_FLAGS_INIT "")
+set(CMAKE_ASM_FLAGS_INIT "-DRCX_SWAN=${RCX_IMAGE_SWAN}")
 # Build types must not replace -Os (the image has to fit): they only add or drop debug information.
 foreach(config DEBUG RELEASE RELWITHDEBINFO MINSIZEREL)
     set(CMAKE_C_FLAGS_${config}_INIT "")

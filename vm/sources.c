@@ -352,6 +352,8 @@ void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
 
     if (value < 0 && src != RCX_SRC_POWER_SIGNED)
         return;
+    if (p > 127)
+        p = 127;                       /* the end of the scale; and p x 7 stays within 16 bits */
     if (src != RCX_SRC_POWER8)
         p = (u16)((p * 7u + 63u) / 127u);
     if (p < 7)

@@ -33,7 +33,8 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
             dst = global;
             v = ins[2];                /* byte constants are unsigned */
             if (r->params & 1)         /* four bytes: a word high byte first, or a source */
-                v = (op & 0x80) || op == RCX_SW_SET_G ? ops_source8(b, t, ins + 1) : (s16)(u16)(v << 8 | ins[3]);
+                v = (op & 0x80) || op == RCX_SW_SET_G ? ops_source8(b, t, ins + 1)
+                                                      : (s16)(u16)((u16)ins[2] << 8 | ins[3]);
             if (!(op & 0x40))
                 f = ARITH_SET;         /* 0x2B-0x2D */
         } else {                       /* op Td d16 Ts s16 */

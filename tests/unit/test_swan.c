@@ -445,6 +445,9 @@ static void motor_power_sources(void **state)
                                OP7(0x2F, 5, 2, CONST, -50),     /* MotorPowerSigned(C) = -50: 3, reverse */
                                OP7(0x2F, 7, 0, CONST, 90),      /* MotorBrakePower(A): kept only */
                                OP7(0x2F, 32, 1, CONST, 9),      /* beyond the 8 scale: the end of it */
+                               OP7(0x2F, 16, 0, CONST, 30000),  /* beyond the 128 scale: 7 (not 30000 x 7 wrapped) */
+                               0x2D, 7, 16, 0,
+                               OP7(0x2F, 32, 0, CONST, 4),
                                0x2D, 1, 32, 0, 0x2D, 2, 16, 1, 0x2D, 3, 5, 2, 0x2D, 4, 7, 0, 0x2D, 5, 32, 1,
                                0x2D, 6, 5, 3 };                 /* output D does not exist */
     struct rcx *b = run(code, sizeof code);
@@ -455,6 +458,7 @@ static void motor_power_sources(void **state)
     assert_int_equal(b->global[4], 90);
     assert_int_equal(b->global[5], 9);
     assert_int_equal(b->global[6], 0);
+    assert_int_equal(b->global[7], 30000);                          /* read back as written */
     assert_int_equal(b->out.motor[0] & RCX_MOTOR_POWER, 4);
     assert_int_equal(b->out.motor[1] & RCX_MOTOR_POWER, 7);         /* MotorPower8(B) = 9 after 100 */
     assert_int_equal(b->out.motor[2] & RCX_MOTOR_POWER, 3);
