@@ -93,37 +93,32 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
  * code (any of its objects) has a Swan opcode, or a test (SCheckDo/LCheckDo) of source 43 or 44: NQC's Swan code
  * reaches every variable it compiles through those (swan-target.md 4).
  */
-RCX_STATIC_ASSERT(checks, (RCX_OP_LCHECK_DO & 0xEF) == RCX_OP_SCHECK_DO);
+RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
+#define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
 void swan_download_done(struct rcx *b)
 {
-    u8 obj = b->dl.obj, slot = 0, n = RCX_SLOT_OBJS, swan = 0, op;
-    const u16 *at;
-    const u8 *code;
-    u16 pc, size;
+    u8 obj = b->dl.obj, slot = 0, n = RCX_SLOT_OBJS, op;
+    const u8 *p, *end;
 
     mem_resize(b, obj, b->dl.filled);
     while (obj >= RCX_SLOT_OBJS) {     /* obj / 18 without a division */
         obj = (u8)(obj - RCX_SLOT_OBJS);
         slot++;
     }
-    at = &b->obj_start[rcx_obj_sub(slot, 0)];
+    b->swan[slot] = 0;
+    obj = (u8)(b->dl.obj - obj);       /* the slot's first object */
     do {
-        code = b->arena + at[0];
-        size = (u16)(at[1] - at[0]);
-        for (pc = 0; pc < size; pc = (u16)(pc + 1 + rcx_op_params(op))) {
-            op = code[pc];
-            if (rcx_swan_find(op))
-                goto swan;
-            op = (u8)(op & ~RCX_TOGGLE);
-            if ((op & 0xEF) == RCX_OP_SCHECK_DO && (u16)(size - pc) > 2 &&
-                ((u8)((code[pc + 1] & 0x3F) - RCX_SRC_GLOBAL) <= 1 || (u8)((code[pc + 2] & 0x3F) - RCX_SRC_GLOBAL) <= 1))
-                goto swan;
+        p = b->arena + b->obj_start[obj];
+        end = b->arena + b->obj_start[++obj];
+        while (p < end) {
+            op = *p;
+            /* a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not) with source 43 or 44 */
+            if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && end - p > 2 && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))) {
+                b->swan[slot] = 1;
+                return;
+            }
+            p += 1 + rcx_op_params((u8)(op & ~RCX_TOGGLE));
         }
-        at++;
     } while (--n);
-    if (0)
-swan:
-        swan = 1;
-    b->swan[slot] = swan;
 }
 #endif
