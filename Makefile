@@ -7,15 +7,17 @@ TARGET_DIR := $(BUILD)/h8300
 SWAN_DIR   := $(BUILD)/h8swan
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 
-# command-or-file:debian-package
+# command-or-file:debian-package (installed one target at a time: `make -j` runs the deps targets side by side, and
+# apt-get refuses to run while another holds its lock)
 HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-dev nqc:nqc firmdl3:brickos \
                /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
                /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
-               /usr/lib/python3/dist-packages/selenium:python3-selenium
+               /usr/lib/python3/dist-packages/selenium:python3-selenium \
+               groff:groff-base man:man-db gzip:gzip curl:curl dpkg-shlibdeps:dpkg-dev lintian:lintian
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host asan firmware test fuzz bench run size deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test fuzz bench run size deb install deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -25,7 +27,8 @@ define install_missing
 	  else command -v "$$what" >/dev/null 2>&1 || missing="$$missing $$pkg"; fi; done; \
 	if [ -n "$$missing" ]; then echo "installing Debian packages:$$missing"; \
 	  SUDO=""; [ "$$(id -u)" = 0 ] || SUDO=sudo; \
-	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing >/dev/null; fi
+	  flock /tmp/openrcx-apt.lock sh -c "$$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive \
+	    $$SUDO apt-get install -y -qq $$missing >/dev/null"; fi
 endef
 
 deps-host:
@@ -74,6 +77,19 @@ run: host
 # Image size, free program memory and ROM checksum of the firmware.
 size: firmware
 	sh drivers/size.sh $(TARGET_DIR)
+
+# The Debian package, build/openrcx_<version>_<arch>.deb, with CPack from the host build and the firmware image
+# (packaging/CMakeLists.txt). `make test` builds and checks its own (tests/package).
+deb: host firmware
+	rm -rf $(HOST_DIR)/deb
+	cd $(HOST_DIR) && cpack -G DEB -B $(CURDIR)/$(HOST_DIR)/deb >/dev/null
+	cp $(HOST_DIR)/deb/openrcx_*.deb $(BUILD)/
+	@ls $(BUILD)/openrcx_*.deb
+
+# The same files as the package, under PREFIX (default /usr/local), below DESTDIR if given.
+PREFIX ?= /usr/local
+install: host firmware
+	DESTDIR="$(DESTDIR)" cmake --install $(HOST_DIR) --prefix "$(PREFIX)"
 
 clean:
 	rm -rf $(BUILD)

@@ -109,22 +109,23 @@ void hw_carrier(u8 mode, struct hw_carrier *c)
 }
 
 /*
- * A change is accepted once the same buttons have differed from the accepted state for HW_DEBOUNCE_MS samples in a
- * row; any bounce back, or another button changing meanwhile, starts the count again.
+ * A change is accepted once the same buttons have differed from the accepted state at every look for
+ * HW_DEBOUNCE_MS - 1 ms of the clock since the first (at a look a millisecond, the HW_DEBOUNCE_MS-th look); any
+ * bounce back, or another button changing meanwhile, starts the time again. Time, not looks: a main loop that
+ * catches up on milliseconds looks several times within microseconds.
  */
-u8 hw_debounce(struct hw_debounce *d, u8 raw)
+u8 hw_debounce(struct hw_debounce *d, u8 raw, u8 now)
 {
     u8 diff = (u8)(raw ^ d->state);
 
     if (diff != d->cand) {
         d->cand = diff;
-        d->count = 0;
+        d->since = now;
     }
-    if (!diff || ++d->count < HW_DEBOUNCE_MS)
+    if (!diff || (u8)(now - d->since) < HW_DEBOUNCE_MS - 1)
         return 0; /* the usual case, every millisecond: nothing written */
     d->state = raw;
     d->cand = 0;
-    d->count = 0;
     return diff;
 }
 

@@ -54,9 +54,10 @@ void hw_carrier(u8 mode, struct hw_carrier *c);
 struct hw_debounce {
     u8 state;   /* accepted button bits */
     u8 cand;    /* differing bits being timed */
-    u8 count;   /* milliseconds `cand` has been seen unchanged */
+    u8 since;   /* the clock (ms, modulo 256) when `cand` was first seen */
 };
-u8 hw_debounce(struct hw_debounce *d, u8 raw); /* once per ms: the bits that changed state, 0 most of the time */
+/* A look at the buttons at `now` (ms, modulo 256): the bits that changed state, 0 most of the time. */
+u8 hw_debounce(struct hw_debounce *d, u8 raw, u8 now);
 
 /* LCD (§3.6): PCF8566 at bus address 7C. A frame is the byte sequence between START and STOP. */
 #define HW_LCD_BYTES 9

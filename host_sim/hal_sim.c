@@ -36,7 +36,7 @@ void hal_sound(struct rcx *b, u16 hz)
         return;
     trace_flush_sound(sb);
     sb->sound_hz = hz;
-    sb->sound_start = sb->sim->now;
+    sb->sound_start = sb->sim->room.now;
 }
 
 void hal_lcd(struct rcx *b, const u8 *image)
@@ -63,7 +63,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
     char hex[2 * 255 + 1];
     unsigned i;
 
-    room_send(sb->sim, &sb->tx, data, len, mode);
+    room_send(&sb->sim->room, &sb->port, data, len, mode);
     sb->ir_out += len;
     for (i = 0; i < len; i++)
         sprintf(hex + 2 * i, "%02x", data[i]);
@@ -76,7 +76,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
 
 u8 hal_ir_busy(struct rcx *b)
 {
-    return (u8)room_busy(&sim_brick_of(b)->tx);
+    return (u8)room_busy(&sim_brick_of(b)->port);
 }
 
 void hal_ir_range(struct rcx *b, u8 far)

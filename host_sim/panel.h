@@ -34,10 +34,17 @@ void panel_snapshot(const struct sim_brick *b, struct panel_brick *out);
 /* The JSON of GET /state; returns its length, or 0 when it does not fit in `size`. */
 size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n);
 
+/* panel_files.c: the folder of the page's files (index.html, ...) */
+const char *panel_files_dir(void);
+
 /* panel_http.c */
+#define PANEL_QUEUE 64            /* inputs waiting for the simulation thread */
 struct panel;
 struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, char *err, size_t errlen);
-void panel_sync(struct panel *p, struct sim *s); /* simulation thread, every simulated ms */
+/* Simulation thread, every simulated ms: takes the inputs the pages queued (at most PANEL_QUEUE) for the caller to
+ * apply, then, with how many it applied, snapshots the bricks and answers the requests that wait for them. */
+unsigned panel_take_inputs(struct panel *p, struct sim_event *ev);
+void panel_sync(struct panel *p, const struct sim *s, unsigned applied);
 void panel_stop(struct panel *p);
 
 #endif

@@ -23,7 +23,6 @@
 #include <microhttpd.h>
 #include "panel.h"
 
-#define PANEL_QUEUE 64            /* inputs waiting for the simulation thread */
 #define PANEL_JSON_MAX 16384      /* GET /state of 8 bricks is about 6 KB */
 #define PANEL_CONNECTIONS 64      /* open pages (each holds an event stream) and requests at once */
 #define PANEL_FILE_MAX (1 << 20)
@@ -62,33 +61,35 @@ static const struct {
 
 /* ---- simulation thread ---- */
 
-void panel_sync(struct panel *p, struct sim *s)
+unsigned panel_take_inputs(struct panel *p, struct sim_event *ev)
 {
-    struct panel_input in[PANEL_QUEUE];
-    struct panel_brick shot[SIM_MAX_BRICKS];
     unsigned n, i;
-    int changed;
 
     pthread_mutex_lock(&p->lock);
     n = p->queued;
-    memcpy(in, p->queue, n * sizeof in[0]);
+    for (i = 0; i < n; i++) {
+        memset(&ev[i], 0, sizeof ev[i]);
+        ev[i].brick = p->queue[i].brick;
+        ev[i].kind = p->queue[i].kind;
+        ev[i].a = p->queue[i].a;
+        ev[i].b = p->queue[i].b;
+    }
     p->queued = 0;
     pthread_mutex_unlock(&p->lock);
+    return n;
+}
 
-    for (i = 0; i < n; i++) {
-        struct sim_event ev;
-        memset(&ev, 0, sizeof ev);
-        ev.brick = in[i].brick;
-        ev.kind = in[i].kind;
-        ev.a = in[i].a;
-        ev.b = in[i].b;
-        sim_apply(s, &ev);
-    }
+void panel_sync(struct panel *p, const struct sim *s, unsigned n)
+{
+    struct panel_brick shot[SIM_MAX_BRICKS];
+    unsigned i;
+    int changed;
+
     for (i = 0; i < (unsigned)p->nbricks; i++)
         panel_snapshot(s->brick[i], &shot[i]);
 
     pthread_mutex_lock(&p->lock);
-    p->now_ms = s->now / 1000;
+    p->now_ms = s->room.now / 1000;
     changed = memcmp(shot, p->shot, (size_t)p->nbricks * sizeof shot[0]) != 0;
     if (changed) {
         memcpy(p->shot, shot, (size_t)p->nbricks * sizeof shot[0]);
@@ -148,7 +149,7 @@ static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, con
     char *data;
     size_t n;
 
-    snprintf(path, sizeof path, "%s/%s", RCXSIM_PANEL_FILES, name);
+    snprintf(path, sizeof path, "%s/%s", panel_files_dir(), name);
     f = fopen(path, "rb");
     if (!f)
         return refuse(c, MHD_HTTP_NOT_FOUND, "page file missing from the installation");
@@ -450,8 +451,7 @@ struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, c
     pthread_sigmask(SIG_BLOCK, &block, &old);
     p->daemon = MHD_start_daemon(flags, (uint16_t)port, NULL, NULL, route, p, MHD_OPTION_SOCK_ADDR, &addr,
                                  MHD_OPTION_CONNECTION_LIMIT, (unsigned)PANEL_CONNECTIONS,
-                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S),
-                                 MHD_OPTION_LISTENING_ADDRESS_REUSE, 1, MHD_OPTION_END);
+                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S), MHD_OPTION_END);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (!p->daemon) {
         snprintf(err, errlen, "cannot listen on %s port %u (in use?)", bind_addr, port);

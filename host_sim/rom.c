@@ -42,7 +42,7 @@ static void send_reply(struct sim_brick *b, const unsigned char *payload, unsign
     }
     out[len++] = (unsigned char)sum;
     out[len++] = (unsigned char)~sum;
-    room_send(b->sim, &b->tx, out, len, 0);
+    room_send(&b->sim->room, &b->port, out, len, 0);
     b->rom.echo = len;
     {
         char hex[2 * sizeof out + 1];
@@ -193,7 +193,7 @@ void rom_byte(struct sim_brick *b, unsigned char byte, int error)
 {
     struct sim_rom *r = &b->rom;
 
-    if (r->echo || room_busy(&b->tx)) { /* the ROM discards what it hears while it sends */
+    if (r->echo || room_busy(&b->port)) { /* the ROM discards what it hears while it sends */
         if (r->echo)
             r->echo--;
         return;
@@ -223,21 +223,22 @@ void rom_byte(struct sim_brick *b, unsigned char byte, int error)
 }
 
 /* Once a millisecond: the 30 ms resynchronisation, a complete packet, the hand-over to the firmware. */
-void rom_tick(struct sim_brick *b)
+int rom_tick(struct sim_brick *b)
 {
     struct sim_rom *r = &b->rom;
 
     if (r->state != ROM_IDLE && r->state != ROM_READY && ++r->quiet >= 30)
         r->state = ROM_IDLE;
-    if (!room_busy(&b->tx))
+    if (!room_busy(&b->port))
         r->echo = 0;
-    if (r->state == ROM_READY && !room_busy(&b->tx))
+    if (r->state == ROM_READY && !room_busy(&b->port))
         execute(b);
-    if (r->start_pending && !room_busy(&b->tx)) {
+    if (r->start_pending && !room_busy(&b->port)) {
         if (r->image_end < 1024)
             fprintf(stderr, "rcxsim: brick %d: a %u-byte image is no firmware (firmdl3's fast-download helper? use "
                             "firmdl3 --slow); the virtual RCX runs OpenRCX anyway\n", b->index, r->image_end);
         trace_line(b, "\"rom\":\"firmware started\",\"bytes\":%u,\"entry\":\"%04x\"", r->image_end, r->entry);
-        sim_start_firmware(b);
+        return 1;
     }
+    return 0;
 }

@@ -7,6 +7,7 @@
  *   <ms> quit
  * Lines may come in any order; events at the same time keep their order.
  */
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 #include "sim.h"
@@ -15,7 +16,7 @@ const char *const sim_button_names[SIM_BUTTONS] = { "onoff", "run", "view", "prg
 
 static int fail(const char *path, int line, const char *what)
 {
-    fprintf(stderr, "rcxsim: %s:%d: %s\n", path, line, what);
+    fprintf(stderr, "rcxsim: --script %s:%d: %s\n", path, line, what);
     return -1;
 }
 
@@ -111,7 +112,7 @@ int script_load(struct sim *s, const char *path)
     int line = 0, cap = 0;
 
     if (!f) {
-        perror(path);
+        fprintf(stderr, "rcxsim: --script %s: %s\n", path, strerror(errno));
         return -1;
     }
     while (fgets(text, sizeof text, f)) {

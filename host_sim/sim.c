@@ -6,12 +6,15 @@
 #include <errno.h>
 #include <poll.h>
 #include <signal.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include "sim.h"
 #include "rcx_image.h"
+#include "net.h"
 #include "panel.h"
+#include "tower.h"
 
 /* Where the program memory would sit in the brick's RAM: the top of 8000-EFFF (memory map, UploadRam). */
 #define SIM_ARENA_ADDR ((u16)(0xF000u - RCX_ARENA_SIZE))
@@ -33,6 +36,8 @@ static void on_signal(int sig)
 static void usage(FILE *f)
 {
     fputs("usage: rcxsim [options]\n"
+          "  -h, --help         this list, and exit\n"
+          "  --version          the version of OpenRCX, and exit\n"
           "  --tty PATH         a serial IR tower on a pseudo-terminal, PATH a symlink to it; once per brick\n"
           "  --bricks N         N bricks (1-8) in one IR room\n"
           "  --speed X          X times real time (default 1)\n"
@@ -44,11 +49,37 @@ static void usage(FILE *f)
           "  --rom              start in the ROM's download mode (no firmware)\n"
           "  --duration MS      stop after MS simulated milliseconds\n"
           "  --panel PORT       the bricks live in a browser at http://127.0.0.1:PORT/ (0: any free port)\n"
-          "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n",
+          "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n"
+          "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT
+          ", 0: any port)\n"
+          "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n",
           f);
 }
 
-void sim_start_firmware(struct sim_brick *b)
+/* The options that take a value, and what the value must be: for the one-line refusals. */
+static const char *value_wanted(const char *option)
+{
+    static const char *const wanted[][2] = {
+        { "--tty", "a path for the tower's link, once per brick (at most 8)" },
+        { "--bricks", "a number of bricks, 1-8" },
+        { "--speed", "a factor above 0" },
+        { "--rate", "a number of byte codes above 0, or brick" },
+        { "--script", "a file" },
+        { "--trace", "a file, or - for the standard output" },
+        { "--load", "[B@]FILE.rcx[:SLOT] with SLOT 1-5 (at most 64 images)" },
+        { "--duration", "a number of milliseconds above 0" },
+        { "--panel", "a port, 0-65535" },
+        { "--panel-bind", "an IPv4 or IPv6 address" },
+        { "--tcp-join", "HOST:PORT of an IR hub" },
+    };
+    size_t i;
+    for (i = 0; i < sizeof wanted / sizeof wanted[0]; i++)
+        if (strcmp(option, wanted[i][0]) == 0)
+            return wanted[i][1];
+    return NULL;
+}
+
+static void start_firmware(struct sim_brick *b)
 {
     b->mode = SIM_FIRMWARE;
     b->k.vm.port = b;
@@ -57,6 +88,18 @@ void sim_start_firmware(struct sim_brick *b)
     rt_init(&b->k, SIM_ARENA_ADDR);
     rt_battery(&b->k, (u16)b->battery_mv);
     trace_line(b, "\"power\":\"on\"");
+}
+
+/* A byte off the air reaches the brick's receiver: the firmware's, or the ROM's. In standby the receiver is off. */
+static void brick_hear(struct room_port *p, unsigned char byte, int error)
+{
+    struct sim_brick *b = (struct sim_brick *)(void *)((char *)p - offsetof(struct sim_brick, port));
+    if (b->mode != SIM_STANDBY)
+        b->ir_in++;
+    if (b->mode == SIM_FIRMWARE)
+        rt_ir_byte(&b->k, byte, (u8)error);
+    else if (b->mode == SIM_ROM)
+        rom_byte(b, byte, error);
 }
 
 static struct sim_brick *new_brick(struct sim *s, int index, int rom)
@@ -69,12 +112,15 @@ static struct sim_brick *new_brick(struct sim *s, int index, int rom)
     b->raw[0] = b->raw[1] = b->raw[2] = 1023; /* nothing plugged in: the pull-up reads high */
     b->battery_mv = 9000;
     b->range = 0xFF;
+    b->port.hear = brick_hear;
+    b->port.hears_self = 1;     /* its own echo (rcx-hardware.md §3.8) */
+    room_join(&s->room, &b->port);
     if (rom) {
         b->mode = SIM_ROM;
         rom_reset(b);
         trace_line(b, "\"rom\":\"waiting for firmware\"");
     } else {
-        sim_start_firmware(b);
+        start_firmware(b);
     }
     return b;
 }
@@ -83,7 +129,7 @@ static int load_image(struct sim *s, const char *spec)
 {
     char path[4096], err[256];
     const char *colon;
-    int brick = 0, slot = -1;
+    int brick = 0, slot = -1, status = 0;
     struct rcx_image *img;
     u8 *data;
     size_t size;
@@ -93,7 +139,11 @@ static int load_image(struct sim *s, const char *spec)
         spec = strchr(spec, '@') + 1;
     }
     colon = strrchr(spec, ':');
-    if (colon && colon[1] >= '1' && colon[1] <= '5' && colon[2] == 0) {
+    if (colon && colon[1] && strspn(colon + 1, "0123456789") == strlen(colon + 1)) {
+        if (colon[1] < '1' || colon[1] > '5' || colon[2]) {
+            fprintf(stderr, "rcxsim: --load %s: no program slot %s (slots are 1-5)\n", spec, colon + 1);
+            return -1;
+        }
         slot = colon[1] - '1';
     } else {
         colon = NULL;
@@ -106,17 +156,19 @@ static int load_image(struct sim *s, const char *spec)
     img = malloc(sizeof *img);
     if (!img)
         abort();
+    data = NULL;
     if (rcx_image_read_file(path, &data, &size, err, sizeof err) || rcx_image_parse(img, data, size, err, sizeof err) ||
         rcx_image_load(&s->brick[brick]->k.vm, img, slot, err, sizeof err)) {
         fprintf(stderr, "rcxsim: --load %s: %s\n", path, err);
-        return -1;
+        status = -1;
     }
     free(data);
     free(img);
-    return 0;
+    return status;
 }
 
-void sim_apply(struct sim *s, const struct sim_event *ev)
+/* An input (script or panel) takes effect now. */
+static void apply(struct sim *s, const struct sim_event *ev)
 {
     struct sim_brick *b = s->brick[ev->brick];
     switch (ev->kind) {
@@ -138,7 +190,7 @@ void sim_apply(struct sim *s, const struct sim_event *ev)
             rt_battery(&b->k, (u16)ev->a);
         break;
     case EV_IR:
-        room_send(s, &s->script_tx, ev->bytes, (unsigned)ev->nbytes, 0);
+        room_send(&s->room, &s->script, ev->bytes, (unsigned)ev->nbytes, 0);
         break;
     case EV_QUIT:
         s->quit = 1;
@@ -160,7 +212,8 @@ static void step(struct sim *s, struct sim_brick *b)
     unsigned i, n, cost, budget;
 
     if (b->mode == SIM_ROM) {
-        rom_tick(b);
+        if (rom_tick(b))
+            start_firmware(b);
         return;
     }
     if (b->mode != SIM_FIRMWARE)
@@ -193,20 +246,17 @@ static double wall_seconds(void)
     return (double)ts.tv_sec + ts.tv_nsec / 1e9;
 }
 
-/* Hold the loop back to `speed` x real time; towers that receive bytes wake it early. */
+/* Hold the loop back to `speed` x real time; links that receive bytes wake it early. */
 static void pace(struct sim *s, double wall_start)
 {
-    struct pollfd fds[SIM_MAX_BRICKS];
-    double ahead = (double)s->now / 1e6 / s->speed - (wall_seconds() - wall_start);
-    int i;
+    struct pollfd fds[ROOM_MAX_PORTS + 8];
+    double ahead = (double)s->room.now / 1e6 / s->speed - (wall_seconds() - wall_start);
+    int n;
 
     if (ahead < 0.0005)
         return;
-    for (i = 0; i < s->ntowers; i++) {
-        fds[i].fd = s->tower[i].master;
-        fds[i].events = POLLIN;
-    }
-    if (poll(fds, (nfds_t)s->ntowers, (int)(ahead * 1000 + 0.5)) < 0 && errno != EINTR)
+    n = room_fds(&s->room, fds, (int)(sizeof fds / sizeof fds[0]));
+    if (poll(fds, (nfds_t)n, (int)(ahead * 1000 + 0.5)) < 0 && errno != EINTR)
         s->quit = 1;
 }
 
@@ -217,20 +267,25 @@ static int run(struct sim *s, sim_us duration)
     int i;
 
     while (!s->quit && !stop_signal) {
-        room_advance(s, s->now);
-        while (s->next_event < s->nevents && s->events[s->next_event].at <= s->now)
-            sim_apply(s, &s->events[s->next_event++]);
+        room_advance(&s->room, s->room.now);
+        while (s->next_event < s->nevents && s->events[s->next_event].at <= s->room.now)
+            apply(s, &s->events[s->next_event++]);
         if (s->quit)
             break;
-        if (s->ntowers && ms++ % poll_every == 0)
-            tower_poll(s);
-        if (s->panel)
-            panel_sync(s->panel, s);
+        if (s->room.links && ms++ % poll_every == 0)
+            room_poll(&s->room);
+        if (s->panel) {
+            struct sim_event in[PANEL_QUEUE];
+            unsigned n = panel_take_inputs(s->panel, in), k;
+            for (k = 0; k < n; k++)
+                apply(s, &in[k]);
+            panel_sync(s->panel, s, n);
+        }
         for (i = 0; i < s->nbricks; i++)
             step(s, s->brick[i]);
-        if (duration && s->now >= duration)
+        if (duration && s->room.now >= duration)
             break;
-        s->now += 1000;
+        s->room.now += 1000;
         if (s->speed > 0)
             pace(s, wall_start);
     }
@@ -242,6 +297,7 @@ int main(int argc, char **argv)
     static struct sim sim;
     struct sim *s = &sim;
     const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL, *panel_bind = "127.0.0.1";
+    const char *tcp = NULL, *tcp_join = NULL;
     int nttys = 0, nloads = 0, rom = 0, i, status = 0;
     long panel_port = -1;
     sim_us duration = 0;
@@ -254,11 +310,21 @@ int main(int argc, char **argv)
             s->speed = 0;
         } else if (strcmp(a, "--rom") == 0) {
             rom = 1;
+        } else if (strcmp(a, "--tcp") == 0) {
+            tcp = v && v[0] != '-' ? argv[++i] : ""; /* the value is optional */
         } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
             usage(stdout);
             return 0;
+        } else if (strcmp(a, "--version") == 0) {
+            puts("rcxsim (OpenRCX) " RCXSIM_VERSION);
+            return 0;
+        } else if (!value_wanted(a)) {
+            fprintf(stderr, "rcxsim: %s: %s\n", a,
+                    a[0] == '-' ? "unknown option (rcxsim --help lists them)"
+                                : "unexpected argument (options start with --)");
+            return 2;
         } else if (!v) {
-            usage(stderr);
+            fprintf(stderr, "rcxsim: %s: needs %s\n", a, value_wanted(a));
             return 2;
         } else {
             i++;
@@ -280,23 +346,29 @@ int main(int argc, char **argv)
                 ;
             } else if (strcmp(a, "--panel-bind") == 0) {
                 panel_bind = v;
+            } else if (strcmp(a, "--tcp-join") == 0) {
+                tcp_join = v;
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
                 duration = (sim_us)atol(v) * 1000;
             } else {
-                fprintf(stderr, "rcxsim: bad option %s %s\n", a, v);
-                usage(stderr);
+                fprintf(stderr, "rcxsim: %s %s: expected %s\n", a, v, value_wanted(a));
                 return 2;
             }
         }
     }
+    if (tcp && tcp_join) {
+        fprintf(stderr, "rcxsim: --tcp and --tcp-join: the room is either the hub or joins one\n");
+        return 2;
+    }
     if (nttys > s->nbricks) {
-        fprintf(stderr, "rcxsim: more --tty than bricks\n");
+        fprintf(stderr, "rcxsim: --tty: %d given, more than the %d brick%s (--bricks N)\n", nttys, s->nbricks,
+                s->nbricks == 1 ? "" : "s");
         return 2;
     }
     if (trace) {
         s->trace = strcmp(trace, "-") == 0 ? stdout : fopen(trace, "w");
         if (!s->trace) {
-            perror(trace);
+            fprintf(stderr, "rcxsim: --trace %s: %s\n", trace, strerror(errno));
             return 2;
         }
         setvbuf(s->trace, NULL, _IOLBF, 0); /* lines appear as they happen: others watch the trace live */
@@ -321,11 +393,17 @@ int main(int argc, char **argv)
         }
     }
     for (i = 0; i < nttys && status == 0; i++) {
-        if (tower_open(s, &s->tower[i], ttys[i], s->brick[i])) {
+        if (tower_open(&s->room, ttys[i], &s->brick[i]->port)) {
             fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
             status = 1;
-        } else {
-            s->ntowers++;
+        }
+    }
+    room_join(&s->room, &s->script);
+    if (status == 0 && (tcp || tcp_join)) {
+        char err[512];
+        if (tcp ? net_hub_open(&s->room, tcp, err, sizeof err) : net_join(&s->room, tcp_join, err, sizeof err)) {
+            fprintf(stderr, "rcxsim: %s %s: %s\n", tcp ? "--tcp" : "--tcp-join", tcp ? tcp : tcp_join, err);
+            status = 1;
         }
     }
     if (status == 0)
@@ -337,10 +415,9 @@ int main(int argc, char **argv)
         free(s->brick[i]);
     }
     if (s->trace && status == 0)
-        fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->now / 1000,
+        fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->room.now / 1000,
                 s->quit ? "quit" : stop_signal ? "signal" : "duration");
-    for (i = 0; i < s->ntowers; i++)
-        tower_close(&s->tower[i]);
+    room_close(&s->room);
     if (s->trace && s->trace != stdout)
         fclose(s->trace);
     free(s->events);

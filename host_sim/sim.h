@@ -1,6 +1,7 @@
 /*
  * The virtual RCX: whole firmware runtimes (src/ + vm/) on simulated drivers, any number of bricks in one simulated
- * IR room, serial IR towers on pseudo-terminals for the real host tools, and the ROM's download mode.
+ * IR room (room.h) with the ways into it: serial IR towers on pseudo-terminals for the real host tools (tower.h),
+ * the TCP link (net.h), and the ROM's download mode.
  *
  * Time is simulated: the main loop advances it one millisecond at a time and hands each brick rt_tick(); the wall
  * clock only paces the loop (real time, N x real time, or as fast as possible) and never reaches a brick.
@@ -10,25 +11,9 @@
 
 #include <stdio.h>
 #include "runtime.h"
-
-typedef unsigned long long sim_us; /* simulated time, microseconds */
+#include "room.h"
 
 #define SIM_MAX_BRICKS 8
-#define SIM_TX_QUEUE 4096          /* bytes waiting at one transmitter */
-
-/* A transmitter in the room: a brick's IR LED, a tower, or the script. Bytes leave back to back at the line rate. */
-struct sim_tx {
-    unsigned short queue[SIM_TX_QUEUE]; /* byte | HAL_IR_* mode << 8 */
-    unsigned head, count;
-    sim_us start, end;             /* the byte on the air (count > 0) */
-    int collided;                  /* another transmitter overlapped it */
-};
-
-struct sim_tower {                 /* a serial IR tower on a pseudo-terminal, facing one brick */
-    int master, slave;             /* we keep the slave open so the master never sees a hang-up */
-    char *link;                    /* the symlink the user named */
-    struct sim_tx tx;
-};
 
 /* The ROM's download mode (rcx-hardware.md §2, §4.3). */
 #define ROM_RX_MAX (6 + 1024)
@@ -56,8 +41,7 @@ struct sim_brick {
     struct sim *sim;
     int index;
     enum sim_mode mode;
-    struct sim_tx tx;              /* its IR LED */
-    struct sim_tower *tower;
+    struct room_port port;         /* its IR LED and receiver */
     unsigned short raw[3];         /* A/D value of inputs 1-3 */
     unsigned battery_mv;
     long credit_us;                /* byte-code budget of the brick model */
@@ -83,12 +67,10 @@ struct sim_event {                 /* one line of the --script file */
 struct panel;
 
 struct sim {
-    sim_us now;
+    struct room room;              /* the IR room; its clock is the simulation's */
     int nbricks;
     struct sim_brick *brick[SIM_MAX_BRICKS];
-    int ntowers;
-    struct sim_tower tower[SIM_MAX_BRICKS];
-    struct sim_tx script_tx;       /* `ir` lines of the script: heard by every brick and tower */
+    struct room_port script;       /* `ir` lines of the script: heard by every brick and tower */
     struct sim_event *events;
     int nevents, next_event;
     FILE *trace;
@@ -98,22 +80,10 @@ struct sim {
     struct panel *panel;           /* the browser panel (--panel), or NULL */
 };
 
-/* room.c: the shared IR room and the towers. */
-void room_send(struct sim *s, struct sim_tx *tx, const unsigned char *data, unsigned len, unsigned mode);
-int room_busy(const struct sim_tx *tx);
-void room_advance(struct sim *s, sim_us until);
-int tower_open(struct sim *s, struct sim_tower *t, const char *link, struct sim_brick *b);
-void tower_poll(struct sim *s);
-void tower_close(struct sim_tower *t);
-
 /* rom.c */
 void rom_reset(struct sim_brick *b);
 void rom_byte(struct sim_brick *b, unsigned char byte, int error);
-void rom_tick(struct sim_brick *b);
-
-/* sim.c */
-void sim_start_firmware(struct sim_brick *b);
-void sim_apply(struct sim *s, const struct sim_event *ev); /* an input (script or panel) takes effect now */
+int rom_tick(struct sim_brick *b); /* 1: the image is unlocked and its reply out, the firmware starts now */
 
 /* hal_sim.c */
 extern const char *const sim_motor_dirs[4]; /* the trace's names of enum hal_motor_mode */

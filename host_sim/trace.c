@@ -20,7 +20,7 @@ void trace_line(struct sim_brick *b, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    vline(b, b->sim->now, fmt, ap);
+    vline(b, b->sim->room.now, fmt, ap);
     va_end(ap);
 }
 
@@ -28,7 +28,7 @@ void trace_flush_sound(struct sim_brick *b)
 {
     if (b->sound_hz)
         trace_line(b, "\"sound\":%u,\"ms\":%llu,\"from\":%llu", b->sound_hz,
-                   (b->sim->now - b->sound_start) / 1000, b->sound_start / 1000);
+                   (b->sim->room.now - b->sound_start) / 1000, b->sound_start / 1000);
     b->sound_hz = 0;
 }
 

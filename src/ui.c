@@ -7,10 +7,12 @@
 #include "runtime.h"
 #include "hal.h"
 
-/* Nothing idle yet, not switching off, no battery mark. */
+/* Nothing idle yet, not switching off, no battery mark; and the double beep, which firm0328 plays when it starts
+ * (its own request, not the ROM's: issue 15, observed on the emulated brick), as when the brick is switched on. */
 void ui_init(struct rcx_brick *k)
 {
     memset(&k->ui, 0, sizeof k->ui);
+    sound_ui(&k->vm, 1);
 }
 
 /* View steps from whatever is shown (a program's own view included, which drops out) to the watch, then through

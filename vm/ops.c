@@ -222,7 +222,9 @@ OP(op_watch)
     if (ins[1] < 24 && ins[2] < 60) {
         b->watch = (u16)(ins[1] * 60u + ins[2]);
         b->watch_ms = 0;
-        display_view(b, 0); /* the watch is selected (spec p. 51) */
+        if (b->display.view != DISPLAY_USER)
+            display_view(b, 0); /* the watch is selected (spec p. 51), but a program's own view stays, as firm0328
+                                 * keeps it (issue 15, observed on the emulated brick) */
     }
 }
 OP(op_sensor_type) { UNUSED_T; sensor_set_type(b, ins[1], ins[2]); }

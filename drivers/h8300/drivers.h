@@ -8,7 +8,7 @@
 
 struct rcx_brick;
 
-/* main.c: what the tick and A/D interrupt (irq.s) shares with the main loop, and the button debouncer. */
+/* main.c: what the tick interrupt (irq.s) shares with the main loop, and the button debouncer. */
 extern struct hw_motors drv_motors; /* hal_motor writes, the tick interrupt reads */
 extern u8 drv_sensor_power RCX_EIGHT; /* P6 bits of the inputs with active sensors */
 #define DRV_AD_SLOTS 4 /* scans the main loop may fall behind before samples are lost */
@@ -41,7 +41,7 @@ void drv_outputs_on(void);          /* ports, motors, speaker, LCD (with the ima
 
 /* irq.s: entry points for the RAM vector table, and the standby code copied to on-chip RAM. */
 void rcx_irq_ignore(void);
-void rcx_timer_irq(void);           /* FRT compare match A (the tick) and A/D end */
+void rcx_timer_irq(void);           /* FRT compare match A (the tick) */
 void rcx_sci_irq(void);             /* the four SCI interrupts: rcx_sci_isr */
 extern const u8 rcx_standby_code[];  /* 16 bytes */
 void rcx_standby_stub(void);        /* linker/openrcx.ld: where the standby code runs (FD80) */

@@ -27,8 +27,8 @@ RCX_HIGH_CODE void hal_motor(struct rcx *b, u8 port, u8 mode, u8 level)
     hw_motor_set(&drv_motors, port, mode, level); /* the tick interrupt writes the latch within 1 ms */
 }
 
-/* The A/D interrupt applies the mask after each scan, the tick interrupt removes power before the next while
- * any input has it; an input no longer in the mask is unpowered here, at once. */
+/* The tick interrupt removes each input's power in the mask for its conversion and applies it again after (irq.s);
+ * an input no longer in the mask is unpowered here, at once. */
 RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 {
     u8 bit, power;
@@ -91,7 +91,10 @@ void drv_outputs_on(void)
     sci_start(0);
 }
 
-/* For standby: everything quiet and unpowered, the display switched off. */
+/* For standby: everything quiet and unpowered, the display switched off, then the pins as the LEGO ROM's own
+ * shutdown leaves them (rcx-hardware.md 3.11), which is what LEGO shipped for a brick that is off for weeks: sensor
+ * power, P6.3, the speaker and the LCD lines inputs; the carrier pin P6.7, the SCI pins P5.0/P5.1 and the range pin
+ * P4.0 outputs at 0 (nothing floats, the IR LED stays dark); TMR0's output setting off. drv_outputs_on undoes it. */
 static void outputs_off(void)
 {
     FRT_TIER = 0;                 /* no tick: no motor pattern, no A/D cycle */
@@ -99,11 +102,16 @@ static void outputs_off(void)
     MOTOR_LATCH = 0;
     sci_stop();
     TMR0_TCR = 0;
+    TMR0_TCSR = 0;
     tone_hz = 0;
     P6DR = P6_SCL | P6_SDA;       /* sensors, carrier and P6.3 low; LCD bus idle */
     p6ddr_set((u8)(p6ddr & ~(P6_SPEAKER | P6_AWAKE)));
     hw_lcd_send(lcd_frame, hw_lcd_off_frame(lcd_frame)); /* the image from byte 4 on stays */
-    P6DR = 0;                     /* bus lines low: no current into the controller in standby */
+    p6ddr_set(P6_CARRIER);
+    P6DR = 0;
+    P5DR = 0;                     /* P5.2 too: the RAM stays awake until the standby code */
+    P5DDR = 0x07;
+    P4DR &= (u8)~0x01;
 }
 
 /* On-Off up for 20 ms in a row. */
@@ -124,6 +132,8 @@ static RCX_HIGH_CODE void wait_onoff_released(void)
  */
 void hal_power_off(struct rcx *b)
 {
+    u8 range = P4DR;       /* P4.0, the IR range: the IR layer's, kept through standby */
+
     (void)b;
     h8_irq_disable();
     outputs_off();
@@ -137,7 +147,11 @@ void hal_power_off(struct rcx *b)
     H8_WRITE8(0xc7, 0);
     H8_BCLR(7, 0xc4);      /* SYSCR.SSBY (H8_SYSCR_SSBY) */
     drv_tick_start(0);     /* whether standby kept the timers is not known: set everything up again */
-    wait_onoff_released(); /* the press that woke the brick is not a button event */
+    /* On at once, while the button may still be held, as firm0328 comes on. The contact settles first (20 ms after
+     * the oscillator's 8 ms): the state it then shows is taken without an edge (drv_tick_start), a release is no
+     * button event, and the debouncing filters what bounce there is later. */
+    drv_wait_ms(20);
+    P4DR = range;
     drv_outputs_on();
     drv_tick_start(1);
     h8_irq_enable();
@@ -160,7 +174,10 @@ static const u8 rom_state[] RCX_HIGH_DATA = {
     0xD8, 2, 0x00, 0xFF,        /* SCI SMR, BRR */
     0x90, 8, 0x01, 0x00, 0x00, 0x00, 0xFF, 0xFF, 0x00, 0xE0, /* FRT TIER, TCSR, FRC, OCRA, TCR, TOCR */
     0xB5, 1, 0x00,              /* P4DDR (P3 is the data bus: never touched) */
-    0xB7, 5, 0x00, 0xF8, 0x00, 0xF8, 0x00, /* P4DR, P5DDR, P6DDR, P5DR, P6DR */
+    /* P4DR, P5DDR, P6DDR, P5DR, P6DR; but P5.2, the external RAM's power-save line, stays an output at 0: this code
+     * and table run from external RAM, which a floating P5.2 could put to sleep under them, and the ROM's own first
+     * instructions run before it drives the line again (rcx-hardware.md 2.4). */
+    0xB7, 5, 0x00, 0xFC, 0x00, 0xF8, 0x00,
     0xC3, 2, 0xF8, 0x0B,        /* STCR, SYSCR (no standby on SLEEP; the ROM sets its own) */
     /* ISCR, IER, TMR0 TCR, TCSR, TCORA, TCORB, and TCNT, the one exception: non-zero, so that the ROM comes up
      * awake and ready for a download instead of asleep (rcx-hardware.md 2.4). */
@@ -168,8 +185,9 @@ static const u8 rom_state[] RCX_HIGH_DATA = {
     0xD0, 5, 0x00, 0x10, 0xFF, 0xFF, 0x00, /* TMR1 TCR, TCSR, TCORA, TCORB, TCNT */
     0xE8, 2, 0x00, 0x7F,        /* A/D ADCSR, ADCR */
     /* The ROM's copies of the write-only port directions (rcx-hardware.md 1.2), which the start-up code's stack
-     * and the standby code overwrote: P1 and P2 as the ROM set them (the address bus), the others as just reset. */
-    0x80, 7, 0xFF, 0xFF, 0x00, 0x00, 0x00, 0x00, 0x00,
+     * and the standby code overwrote: P1 and P2 as the ROM set them (the address bus), P5 with its P5.2 output, the
+     * others as just reset. */
+    0x80, 7, 0xFF, 0xFF, 0x00, 0x00, 0x04, 0x00, 0x00,
     0
 };
 

@@ -4,39 +4,44 @@
 ; (FD92-FDBE) with jsr, pops r6 and returns with rte. So an entry point stored there is a subroutine
 ; ending in rts, and must keep r0-r5 intact. A C function keeps r4-r6 itself; the entry saves the
 ; call-clobbered r0-r3 around it, and all entries restore them through one shared tail. The C handler
-; must clear the peripheral's interrupt flag. Two handlers serve the six interrupts in use, each finding
-; out from the flags what happened (main.c, sci.c).
+; must clear the peripheral's interrupt flag. Two handlers serve the five interrupts in use, the SCI's finding out
+; from the flags what happened (sci.c).
 
 	.section .text
 	.global	_rcx_timer_irq
 	.global	_rcx_sci_irq
 
-; The FRT compare match A (FDA2, the 1 ms tick) and the end of an A/D scan (FDBC) share this handler, written
-; here because it runs a thousand times a second whatever the brick is doing. Each entry serves one of the two,
-; and the CPU comes back at once for the other if it is pending too.
+; The FRT compare match A (FDA2, the 1 ms tick), written here because it runs a thousand times a second whatever
+; the brick is doing. Every millisecond the motor latch takes the next byte of the pattern hal_motor worked out
+; (drv_motors, hw.h), and the inputs' A/D results go to the next slot of drv_ad_slot for the main loop (main.c: it
+; must never run the runtime inside an interrupt), which reads the battery's from ADDRD itself. A scan equal to the
+; last one is not stored when the main loop has fed everything and the runtime said that such a scan changes nothing
+; (rcx.sensors_rest, vm/sensors.h): nearly always, on an idle brick.
 ;
-; Every millisecond the motor latch takes the next byte of the pattern hal_motor worked out (drv_motors, hw.h),
-; and the A/D scans AN0-AN3 afresh (66 us). With an active sensor (light, rotation) its power is off for the
-; scan, and the A/D interrupt takes the results and powers it again. With passive inputs only, no interrupt is
-; needed: the scan started a millisecond ago is read here. The inputs' results go to the next slot of
-; drv_ad_slot for the main loop (main.c: it must never run the runtime inside an interrupt), which reads the
-; battery's from ADDRD itself. A scan equal to the last one is not stored when the main loop has fed everything and the runtime
-; said that such a scan changes nothing (rcx.sensors_rest, vm/sensors.h): nearly always, on an idle brick.
+; Passive inputs and the battery come from a scan of AN0-AN3 that runs on by itself: in scan mode the converter
+; starts over after each pass (66 us) until ADST is cleared, each data register holding its channel's latest
+; result, never older than a pass. The tick reads them as they are, without stopping it, and starts the scan only
+; if it is not running with a pass made (start-up, wake-up, or stopped below). That costs the idle tick nothing (no
+; A/D interrupt, no restart); the price is the converter's own supply current while the brick is on (about 0.5 mA
+; typical in the tables of later H8 parts; the H8/3292's was not found). Reading a register while the scan writes
+; it is safe: a word read (high byte first, rcx-hardware.md 3.3) takes the low byte from the copy latched with the
+; high one.
+;
+; An active sensor (light, rotation) must be read unpowered, a few us after its own power is removed, as brickOS
+; reads it (its rotation thresholds are tuned for that: rcx-hardware.md 3.3). At such a tick the scan is stopped,
+; then for each active input in turn: its power off, at once a single conversion of its channel (CKS 0), the end
+; awaited (ADF, 259-266 states), its power on again. Its input is sampled from tD = 10-17 states after the start
+; for tSPL = 63 states: held 82-89 states (5.1-5.6 us) after the power went off (the write to ADCSR is the next
+; instruction, 9 states on), and it is off for about 20 us in each millisecond (brickOS: 20-30 us, the LEGO ROM
+; some 70). Each such input costs the tick about 300 states, during which other interrupts wait (at most some
+; 60 us with three: a byte takes 4.6 ms at 2400 Bd). Then the slot is stored, with the single results for
+; the active inputs and the scan's for the others, and the scan started again. Its passes convert the active inputs'
+; channels while they are powered: those results are never used, as the tick converts them afresh before storing.
 _rcx_timer_irq:
 	mov.w	r0,@-r7
 	mov.w	r1,@-r7
 	mov.w	r2,@-r7
 	mov.w	r3,@-r7
-	mov.b	@0xe8:8,r0l		; ADCSR
-	mov.b	@_drv_sensor_power:8,r0h
-	mov.b	r0l,r1l
-	and.b	#0xc0,r1l		; ADF and ADIE both set: the scan with active sensors ended
-	cmp.b	#0xc0,r1l
-	bne	.Ltick
-	sub.b	r0l,r0l			; r0l 0: then power them again
-	mov.b	r0l,@0xe8:8		; ADCSR 0: ADF (read as 1 above) cleared, no restart before the tick
-	bra	.Lscan
-.Ltick:
 	bclr	#3,@0x91:8		; TCSR.OCFA, read as 1: acknowledged
 	mov.b	@_drv_ms_ticks:8,r1l
 	inc	r1l
@@ -66,16 +71,11 @@ _rcx_timer_irq:
 	inc	r1l
 	and.b	#7,r1l
 	mov.b	r1l,@_drv_motors+8:16
-	mov.b	r0h,r0h
-	beq	.Lpassive
-	mov.b	@0xbb:8,r1l		; P6DR: active sensors unpowered for the scan (hal_sensor_power unpowers
-	and.b	#0xf8,r1l		; one no longer wanted)
-	mov.b	r1l,@0xbb:8
-	bra	.Lrestart		; their scan was taken by the A/D interrupt
-.Lpassive:
-	btst	#7,r0l			; ADF: the scan started a millisecond ago is complete
-	beq	.Lrestart
-	mov.b	#1,r0l			; r0l 1: then start the next scan
+	mov.b	@0xe8:8,r0l		; ADCSR: B3 = ADF, ADST, SCAN, AN0-AN3: the scan runs, a pass made
+	mov.b	@_drv_sensor_power:8,r0h ; the active inputs: bit n for ANn, as their power bits in P6DR
+	bne	.Lactive
+	cmp.b	#0xb3,r0l
+	bne	.Lrestart
 .Lscan:
 	sub.b	r1h,r1h
 	mov.b	@_drv_ad_done:8,r1l
@@ -114,20 +114,10 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_woken:8	; the main loop has a scan to feed
 	mov.b	r1l,@_drv_yield:16
 .Lstored:
-	mov.b	r0l,r0l
-	bne	.Lrestart
-	mov.b	@0xbb:8,r1l		; the scan is over: active sensors powered again
-	or.b	r0h,r1l
-	mov.b	r1l,@0xbb:8
-	bra	.Lreturn
-.Lrestart:
-	sub.b	r1l,r1l			; ADF, when set, read as 1 on entry (r0l) ...
-	mov.b	r1l,@0xe8:8		; ... and written 0: the scan stops
-	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3
 	mov.b	r0h,r0h
-	beq	.Lstart
-	mov.b	#0x73,r1l		; and ADIE: the interrupt at the end, to power the active sensors again
-.Lstart:
+	beq	.Lreturn
+.Lrestart:				; active inputs (the scan was stopped for them), or no scan running with a pass made
+	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3 (ADF, if read as 1, cleared)
 	mov.b	r1l,@0xe8:8
 .Lreturn:
 	mov.w	@r7+,r3
@@ -136,18 +126,33 @@ _rcx_timer_irq:
 	mov.w	@r7+,r0
 	rts
 
+.Lactive:
+	sub.b	r1l,r1l
+	mov.b	r1l,@0xe8:8		; ADCSR 0: the scan stops
+	mov.b	@0xe8:8,r1l		; ADF read again, now that no pass can end: the next write clears it
+	mov.b	#0x20,r1h		; ADST, single mode, CKS 0, AN0
+.Lnext:
+	btst	r1h,r0h			; bit n of the mask, n = the channel in r1h
+	beq	2f
+	bclr	r1h,@0xbb:8		; P6DR: the sensor unpowered ...
+	mov.b	r1h,@0xe8:8		; ... and its channel converted at once
+1:	mov.b	@0xe8:8,r1l
+	bpl	1b			; until ADF
+	bset	r1h,@0xbb:8		; powered again
+2:	inc	r1h
+	cmp.b	#0x23,r1h
+	bne	.Lnext
+	cmp.b	#0xb3,r0l		; the scan had made a pass: the passive inputs' results are there
+	bne	.Lrestart
+	jmp	@.Lscan
+
 _rcx_sci_irq:				; SCI receive error, byte received, TDR empty, sent (FDB4-FDBA)
 	mov.w	r0,@-r7
 	mov.w	r1,@-r7
 	mov.w	r2,@-r7
 	mov.w	r3,@-r7
 	jsr	@_rcx_sci_isr
-_rcx_irq_return:
-	mov.w	@r7+,r3
-	mov.w	@r7+,r2
-	mov.w	@r7+,r1
-	mov.w	@r7+,r0
-	rts
+	bra	.Lreturn
 
 ; Copied to on-chip RAM at FD80 (16 bytes, up to FD8F) by hal_power_off and called there: while external
 ; RAM is in power-save (P5.2 = 1) no instruction or data may come from it. Interrupts must be enabled for

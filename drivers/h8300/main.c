@@ -1,7 +1,8 @@
 /*
  * OpenRCX on the brick: start-up, the main loop, and the interrupt that keeps time (rcx-hardware.md 3.2-3.5,
- * 3.9). The interrupt only drives the motor latch, switches sensor power around the A/D scan and stores results;
- * the main loop feeds everything to the runtime (src/runtime.h), which must never run inside an interrupt.
+ * 3.9). The interrupt only drives the motor latch, reads the A/D (switching each active sensor's power off around
+ * its conversion) and stores results; the main loop feeds everything to the runtime (src/runtime.h), which must
+ * never run inside an interrupt.
  */
 #include "runtime.h"
 #include "h8.h"
@@ -54,7 +55,6 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
     button_pins = BUTTON_PINS();
     buttons.state = hw_buttons(button_pins, button_pins);
     buttons.cand = 0;
-    buttons.count = 0;
     FRT_TIER = 0;
     FRT_TCR = FRT_TCR_CLK_DIV32;
     H8_BCLR(4, 0x97);               /* TOCR.OCRS (FRT_TOCR_OCRS): FF94 addresses OCRA */
@@ -138,7 +138,7 @@ static __attribute__((noinline)) void buttons_changed(u8 pins)
     u8 changed, state, i;
 
     button_pins = pins;
-    changed = hw_debounce(&buttons, hw_buttons(pins, pins));
+    changed = hw_debounce(&buttons, hw_buttons(pins, pins), drv_ms_ticks); /* the pins were read just now */
     state = buttons.state;
     for (i = 0; changed; i++, changed >>= 1, state >>= 1)
         if (changed & 1)
@@ -186,7 +186,6 @@ int main(void)
                          ::"i"(offsetof(struct rcx_brick, vm.sound.count)), "i"(offsetof(struct rcx_brick, vm.out.pause)),
                          "i"(offsetof(struct rcx_brick, vm.remote.tx_len)));
     RCX_RAMVEC(RCX_VEC_OCIA) = (u16)(unsigned)rcx_timer_irq;
-    RCX_RAMVEC(RCX_VEC_ADI) = (u16)(unsigned)rcx_timer_irq;
     drv_outputs_on();
     rt_init(&brick, (u16)(unsigned)brick.vm.arena);
     drv_tick_start(1);
@@ -227,7 +226,7 @@ int main(void)
         /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
          * milliseconds it sleeps on, as long as no sample or byte comes in. In both cases the milliseconds are
          * counted at once above, all but the last, which rt_tick() takes as usual. The buttons are looked at then:
-         * a press is seen at most 9 ms later, and the debouncing counts as before from there. */
+         * a press is seen at most 9 ms later, and the debouncing times it as before from there. */
         if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks) {
             quiet = quiet_ms();
             do

@@ -171,7 +171,7 @@ function renderBrick(card, b) {
     if (document.activeElement !== card.battery) card.battery.value = b.battery;
     text(card, ".battery-value", `${(b.battery / 1000).toFixed(2)} V`);
     text(card, ".slot", b.slot || "none");
-    text(card, ".tasks", b.tasks.length ? b.tasks.join(", ") : "none");
+    text(card, ".tasks", b.tasks.length ? `task${b.tasks.length > 1 ? "s" : ""} ${b.tasks.join(", ")}` : "none");
     text(card, ".ir-in", b.ir.in);
     text(card, ".ir-out", b.ir.out);
     text(card, ".ir-range", b.ir.range);

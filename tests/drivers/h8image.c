@@ -25,6 +25,10 @@ int h8_image_read(struct h8 *h, const char *image, const char *nm)
     FILE *f;
 
     h8_reset(h);
+    /* The ROM drives P5.2 low from its first instructions (rcx-hardware.md 2.4): external RAM awake, and it must
+     * stay so for as long as anything is fetched from it. */
+    h->mem[0xFFB8] = 0x04;
+    h->ram_guard = 1;
     snprintf(line, sizeof line, "%s.srec", image);
     if (h8_load_srec(h, line)) {
         fprintf(stderr, "cannot read %s (make firmware)\n", line);

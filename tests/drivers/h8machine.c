@@ -29,7 +29,9 @@
 #define ADF 0x80
 #define ADIE 0x40
 #define ADST 0x20
-#define AD_SCAN_STATES (4 * 266) /* four conversions at φ/... 266 states each (CKS = 0) */
+#define SCAN 0x10
+#define CKS 0x08
+#define P6DDR 0xFFB9
 #define P4DR 0xFFB7
 #define P7PIN 0xFFBE
 #define P6DR 0xFFBB
@@ -72,14 +74,58 @@ static uint8_t io_read(struct h8 *h, uint16_t a, uint8_t held)
         return (uint8_t)((held & ~0x06) | (self->held & H8M_ONOFF ? 0 : 0x02) | (self->held & H8M_RUN ? 0 : 0x04));
     if (a == P7PIN)
         return (uint8_t)((self->held & H8M_VIEW ? 0 : 0x40) | (self->held & H8M_PRGM ? 0 : 0x80));
+    if (a == AD_ADCSR && (held & ADF))
+        self->ad_read = 1;
     return held;
 }
 
-/* The LCD bus (rcx-hardware.md §3.6) as the controller hears it: START and STOP are SDA changing while SCL stays
- * high; a bit is taken as SCL rises, eight to a byte and then the acknowledge clock. */
+/*
+ * The LCD bus (rcx-hardware.md §3.6) as the controller hears it: START and STOP are SDA changing while SCL stays
+ * high; a bit is taken as SCL rises, eight to a byte and then the acknowledge clock.
+ * And its timing, held to standard-mode I2C (the PCF8566 is a 100 kHz part): every edge is timed in CPU states. A
+ * port write lands in the instruction's write cycle, its last bus cycle (H8/300 manual, bus states of each
+ * instruction: the next instruction's fetch comes before the read and write of bset/bclr/bst/mov), so `states` at
+ * the hook is when the cycle ends; where in its 3 states the pin changes is not known (and the first byte of a word
+ * written to FFBA lands 3 states before the second). Conservatively an interval counts from the end of its first
+ * write to the start of its last: 3 states less than the hooks' difference. Both lines changing in one write is
+ * a fault within a frame (their order is undefined); outside one (start-up, standby, waking) it is not checked.
+ * The levels are P6DR's (P6DDR is not looked at: the drivers keep both lines outputs while they use the bus).
+ */
+static const struct { const char *what; long long least; } lcd_limit[H8M_LCD_TIMES] = {
+    [H8M_LCD_HIGH] = { "SCL high", 64 },          /* tHIGH 4.0 us at 62.5 ns a state */
+    [H8M_LCD_LOW] = { "SCL low", 76 },            /* tLOW 4.7 us */
+    [H8M_LCD_SETUP] = { "SDA set-up", 4 },        /* tSU;DAT 250 ns, before SCL rises */
+    [H8M_LCD_HOLD] = { "SDA hold", 0 },           /* tHD;DAT 0, after SCL falls */
+    [H8M_LCD_HD_STA] = { "START hold", 64 },      /* tHD;STA 4.0 us, to the first SCL fall */
+    [H8M_LCD_SU_STA] = { "START set-up", 76 },    /* tSU;STA 4.7 us, SCL high before SDA falls */
+    [H8M_LCD_SU_STO] = { "STOP set-up", 64 },     /* tSU;STO 4.0 us, SCL high before SDA rises */
+    [H8M_LCD_BUF] = { "bus free", 76 },           /* tBUF 4.7 us, from a STOP to the next START */
+};
+
+static void lcd_time(struct h8machine *m, int k, unsigned long long from)
+{
+    long long t = (long long)(m->h.states - from) - 3;
+    if (!(m->lcd_timed & 1u << k) || t < m->lcd_least[k])
+        m->lcd_least[k] = t;
+    m->lcd_timed |= 1u << k;
+    if (t < lcd_limit[k].least && !m->lcd_faults++)
+        snprintf(m->lcd_fault, sizeof m->lcd_fault, "%s %lld states (at least %lld) at state %llu, the write before pc %04X",
+                 lcd_limit[k].what, t, lcd_limit[k].least, m->h.states, m->h.pc);
+}
+
 static void lcd_bus(struct h8machine *m, uint8_t was, uint8_t now)
 {
-    if ((was & now & LCD_SCL) && (was ^ now) & LCD_SDA) {
+    uint8_t moved = (uint8_t)((was ^ now) & (LCD_SCL | LCD_SDA));
+    unsigned long long t = m->h.states;
+
+    if (!moved)
+        return;
+    if (moved == (LCD_SCL | LCD_SDA)) {
+        if (m->lcd_in && !m->lcd_faults++)
+            snprintf(m->lcd_fault, sizeof m->lcd_fault, "SCL and SDA changed in one write at state %llu, before pc %04X",
+                     t, m->h.pc);
+    } else if (moved == LCD_SDA && (now & LCD_SCL)) {
+        lcd_time(m, now & LCD_SDA ? H8M_LCD_SU_STO : H8M_LCD_SU_STA, m->lcd_scl_at);
         if (now & LCD_SDA) {
             if (m->lcd_in) {
                 memcpy(m->lcd, m->lcd_rx, m->lcd_n);
@@ -87,18 +133,147 @@ static void lcd_bus(struct h8machine *m, uint8_t was, uint8_t now)
                 m->lcd_frames++;
             }
             m->lcd_in = 0;
+            m->lcd_stop_at = t;
         } else {
+            if (m->lcd_stop_at)
+                lcd_time(m, H8M_LCD_BUF, m->lcd_stop_at);
             m->lcd_in = 1;
             m->lcd_n = m->lcd_bits = 0;
+            m->lcd_start_at = t; /* until SCL first falls */
         }
-    } else if (m->lcd_in && !(was & LCD_SCL) && (now & LCD_SCL)) {
+    } else if (m->lcd_in && moved == LCD_SDA) {
+        lcd_time(m, H8M_LCD_HOLD, m->lcd_scl_at);
+    } else if (m->lcd_in && (now & LCD_SCL)) {
+        lcd_time(m, H8M_LCD_LOW, m->lcd_scl_at);
+        lcd_time(m, H8M_LCD_SETUP, m->lcd_sda_at);
         if (m->lcd_bits < 8 && m->lcd_n < H8M_LCD)
             m->lcd_rx[m->lcd_n] = (uint8_t)(m->lcd_rx[m->lcd_n] << 1 | !!(now & LCD_SDA));
         if (++m->lcd_bits == 9) {
             m->lcd_bits = 0;
             m->lcd_n += m->lcd_n < H8M_LCD;
         }
+    } else if (m->lcd_in) {
+        lcd_time(m, H8M_LCD_HIGH, m->lcd_scl_at);
+        if (m->lcd_start_at)
+            lcd_time(m, H8M_LCD_HD_STA, m->lcd_start_at);
+        m->lcd_start_at = 0;
     }
+    if (moved & LCD_SCL)
+        m->lcd_scl_at = t;
+    if (moved & LCD_SDA)
+        m->lcd_sda_at = t;
+}
+
+/*
+ * The A/D converter (rcx-hardware.md §3.3; the H8/300 family's hardware manuals, "A/D conversion timing"). Setting
+ * ADST starts a conversion; its input is sampled from the start delay tD on for tSPL, and its result is in the data
+ * register and ADF set 259-266 states after the write (CKS = 0; 131-134 with CKS = 1). tD depends on where the
+ * write falls in the converter's clock: 10-17 states (6-9), tSPL is 63 (31). Single mode converts the channel CH
+ * and stops (ADST cleared). Scan mode converts AN0 up to CH (group 0; AN4 up with CH bit 2), 256 states (128) a
+ * conversion after the first, sets ADF at the end of each pass and starts over, until ADST is cleared; a
+ * conversion stopped that way leaves its data register as it was. Figures: the tables of the family (the
+ * H8/325's text; tD, tSPL from a sibling whose totals are the 266 and 134 states of the H8/3297's); assumed: in a
+ * scan's later conversions the sampling comes as in the first, right after 7 (3) states of delay.
+ */
+static void ad_convert(struct h8machine *m, unsigned long long from) /* m->ad_ch, its sampling from `from` on */
+{
+    int fast = m->h.mem[AD_ADCSR] & CKS;
+    m->ad_spl_from = from;
+    m->ad_spl_at = from + (fast ? 31 : 63);
+    m->ad_at = m->ad_spl_at + (fast ? 94 : 186);
+    m->ad_new = 1;
+}
+
+/* The sampling ends: the level is held. A sensor input's is full scale if its power was on at any time since the
+ * sampling started (its removal is later than that, or it is on now: no change since the end can have come yet). */
+static void ad_sample(struct h8machine *m)
+{
+    unsigned ch = m->ad_ch;
+    if (m->ad_input)
+        m->ad_input(m, ch);
+    m->ad_held = ch < 4 ? m->ad_raw[ch] : 0;
+    if (ch < 3) {
+        struct h8m_sensor *s = &m->sensor[ch];
+        s->samples++;
+        if ((m->sensor_power >> ch & 1) || s->off_at > m->ad_spl_from) {
+            m->ad_held = H8M_AD_POWERED;
+        } else {
+            s->unpowered++;
+            if (s->offs && !s->sampled) {
+                s->sampled = 1;
+                if (m->ad_spl_at - s->off_at > s->delay_max)
+                    s->delay_max = m->ad_spl_at - s->off_at;
+            }
+        }
+    }
+    m->ad_spl_at = 0;
+}
+
+static void ad_end(struct h8machine *m)
+{
+    uint8_t *csr = &m->h.mem[AD_ADCSR];
+    h8_write16(&m->h, (uint16_t)(AD_ADDRA + 2 * (m->ad_ch & 3)), (uint16_t)(m->ad_held << 6));
+    if (!(*csr & SCAN)) {
+        *csr = (uint8_t)((*csr | ADF) & ~ADST);
+        m->ad_at = 0;
+        return;
+    }
+    if ((m->ad_ch & 3) == (*csr & 3)) {
+        *csr |= ADF;
+        m->ad_ch = *csr & 4;
+    } else {
+        m->ad_ch++;
+    }
+    ad_convert(m, m->ad_at + (*csr & CKS ? 3 : 7));
+}
+
+/* The samplings and conversion ends due by now, in order. */
+static void ad_due(struct h8machine *m)
+{
+    while (m->ad_at && (m->ad_spl_at ? m->ad_spl_at : m->ad_at) <= m->h.states) {
+        if (m->ad_spl_at)
+            ad_sample(m);
+        else
+            ad_end(m);
+    }
+}
+
+/* ADCSR written. ADF is cleared by writing 0 after reading it as 1, never set by software. */
+static void ad_write(struct h8machine *m, uint8_t was, uint8_t now)
+{
+    unsigned long long t = m->h.states;
+    uint8_t adf = (uint8_t)(was & ADF & ~(m->ad_read && !(now & ADF) ? ADF : 0));
+    m->ad_read = 0;
+    m->h.mem[AD_ADCSR] = (uint8_t)((now & ~ADF) | adf);
+    if (!(now & ADST)) {
+        m->ad_at = m->ad_spl_at = 0;
+    } else if (!(was & ADST)) {
+        m->ad_ch = now & SCAN ? now & 4 : now & 7;
+        ad_convert(m, t + (now & CKS ? 6 + (3 - t % 4) : 10 + (7 - t % 8)));
+    }
+}
+
+/* P6.0-P6.2 (P6DR or P6DDR) written: the samplings that ended before it go with the power as it was. */
+static void sensor_power(struct h8machine *m)
+{
+    struct h8 *h = &m->h;
+    uint8_t now = h->mem[P6DDR] & h->mem[P6DR] & 7, off = m->sensor_power & ~now, on = now & ~m->sensor_power;
+    unsigned ch;
+
+    ad_due(m);
+    for (ch = 0; ch < 3; ch++) {
+        struct h8m_sensor *s = &m->sensor[ch];
+        if (off >> ch & 1) {
+            s->offs++;
+            s->off_at = h->states;
+            s->sampled = 0;
+        } else if (on >> ch & 1 && s->offs) {
+            s->missed += !s->sampled;
+            if (h->states - s->off_at > s->off_max)
+                s->off_max = h->states - s->off_at;
+        }
+    }
+    m->sensor_power = now;
 }
 
 static void io_write(struct h8 *h, uint16_t a, uint8_t was)
@@ -106,6 +281,9 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
     struct h8machine *m = self;
     uint8_t now = h->mem[a];
 
+    m->resched = 1;
+    if (a == P6DR || a == P6DDR)
+        sensor_power(m);
     if (a == P6DR)
         lcd_bus(m, was, now);
     else if (a == TMR0_TCR) {
@@ -115,7 +293,7 @@ static void io_write(struct h8 *h, uint16_t a, uint8_t was)
     else if (a == FRT_FRC || a == FRT_FRC + 1)
         m->tick_at = h->states + 32ull * (h8_read16(h, FRT_OCR) + 1u); /* φ/32, cleared at the match */
     else if (a == AD_ADCSR)
-        m->ad_at = now & ADST ? (m->ad_at ? m->ad_at : h->states + AD_SCAN_STATES) : 0;
+        ad_write(m, was, now);
     else if (a == SCI_SSR) {
         /* A flag is cleared by writing 0 after reading it as 1; software cannot set one (flags: bits 7-3). */
         now = (uint8_t)((was & 0xF8 & ~(ssr_read & ~now)) | (was & 0x06) | (now & 0x01)); /* TEND, MPB read-only */
@@ -233,10 +411,11 @@ static void standby_enter(struct h8machine *m)
     };
     unsigned i;
 
+    memcpy(m->sleep_io, m->h.mem + 0xFF80, sizeof m->sleep_io); /* before the modules are reset */
     m->standby = 1;
     m->standbys++;
     m->settle_at = 0;
-    m->tick_at = m->ad_at = m->tx_at = 0;
+    m->tick_at = m->ad_at = m->ad_spl_at = m->tx_at = 0;
     for (i = 0; i < sizeof reset / sizeof reset[0]; i++)
         m->h.mem[reset[i].a] = reset[i].v;
     memset(m->h.mem + AD_ADDRA, 0, 8);
@@ -268,21 +447,13 @@ static int standby_wait(struct h8machine *m, unsigned long long to)
 static void events(struct h8machine *m)
 {
     struct h8 *h = &m->h;
-    unsigned i;
 
     if (m->tick_at && h->states >= m->tick_at) {
         h->mem[FRT_TCSR] |= OCFA;
         m->tick_at += 32ull * (h8_read16(h, FRT_OCR) + 1u);
         m->ms_seen++;
     }
-    if (m->ad_at && h->states >= m->ad_at) {
-        if (m->ad_input)
-            m->ad_input(m);
-        for (i = 0; i < 4; i++)
-            h8_write16(h, (uint16_t)(AD_ADDRA + 2 * i), (uint16_t)(m->ad_raw[i] << 6));
-        h->mem[AD_ADCSR] = (uint8_t)((h->mem[AD_ADCSR] | ADF) & ~ADST); /* one pass, as brickEmu's */
-        m->ad_at = 0;
-    }
+    ad_due(m);
     if (m->tx_at && h->states >= m->tx_at) {
         uint8_t echo = m->tx_byte;
         m->tx_at = 0;
@@ -301,8 +472,8 @@ static unsigned long long next_event(const struct h8machine *m)
     unsigned long long t = next_change(m);
     if (m->tick_at && m->tick_at < t)
         t = m->tick_at;
-    if (m->ad_at && m->ad_at < t)
-        t = m->ad_at;
+    if (m->ad_at && (m->ad_spl_at ? m->ad_spl_at : m->ad_at) < t)
+        t = m->ad_spl_at ? m->ad_spl_at : m->ad_at;
     if (m->tx_at && m->tx_at < t)
         t = m->tx_at;
     if (m->rx_tail != m->rx_head && m->rx_at[m->rx_tail % H8M_RX] < t)
@@ -367,6 +538,11 @@ int h8m_run(struct h8machine *m, unsigned long long until)
         m->inhibit = op >= 0x03 && op <= 0x07;
         if (h8_step_traced(h))
             return -1;
+        if (m->resched || m->ad_new) { /* a timer set up, a conversion or a transmission started: not only at the
+                                        * next event known */
+            m->resched = m->ad_new = 0;
+            next = next_event(m);
+        }
         if (h->asleep && (h->mem[SYSCR] & SSBY)) {
             standby_enter(m);
             next = next_event(m);

@@ -1,9 +1,10 @@
 /*
  * The whole brick around the simulated CPU (h8sim.h): the image's main() runs with the peripherals the firmware
  * uses, so that time, interrupts and sleep are the image's own. Modelled: the FRT compare match A (the tick), the
- * A/D scan of AN0-AN3, the SCI at 2400 Bd 8O1 with the brick hearing its own transmission, SLEEP until the next
- * interrupt, and the ROM's interrupt entry (push r6, call the RAM vector, pop r6, rte: rcx-hardware.md §6) as code
- * of its own in the on-chip ROM's place. Everything else reads back what was written.
+ * A/D converter (single and scan mode, the scan repeating until stopped; when each input is sampled, and whether
+ * its sensor's power was off then), the SCI at 2400 Bd 8O1 with the brick hearing its own transmission, SLEEP until
+ * the next interrupt, and the ROM's interrupt entry (push r6, call the RAM vector, pop r6, rte: rcx-hardware.md §6)
+ * as code of its own in the on-chip ROM's place. Everything else reads back what was written.
  * Buttons (h8m_button) and the IRQ0/IRQ1 pins they drive, software standby and the wake-up from it, and the LCD
  * bus's frames (decoded from the port writes) too; h8machine.c says what of that is assumed.
  */
@@ -19,18 +20,45 @@
 #define H8M_TX 4096
 #define H8M_CHANGES 64
 #define H8M_LCD 16
+/* The LCD bus's timing, as intervals of struct h8machine's lcd_least (standard-mode I2C names). */
+enum { H8M_LCD_HIGH, H8M_LCD_LOW, H8M_LCD_SETUP, H8M_LCD_HOLD, H8M_LCD_HD_STA, H8M_LCD_SU_STA, H8M_LCD_SU_STO,
+       H8M_LCD_BUF, H8M_LCD_TIMES };
 /* Buttons, as bits of `held` and of h8m_button (rcx-hardware.md §3.5). */
 #define H8M_ONOFF 0x01 /* P4.1, IRQ1 */
 #define H8M_RUN 0x02   /* P4.2, IRQ0 */
 #define H8M_VIEW 0x04  /* P7.6 */
 #define H8M_PRGM 0x08  /* P7.7 */
+/* What a channel converts while its sensor is powered: the line near the battery's rail, full scale. */
+#define H8M_AD_POWERED 1023
+
+/* One sensor input's power (P6.n as an output at 1 powers the sensor on ANn) and how its channel was sampled, in
+ * states. A removal is a falling edge of P6DDR.n & P6DR.n; a sampling is unpowered if the power was off from its
+ * start to its end (the hold, when the sample-and-hold keeps the level converted). */
+struct h8m_sensor {
+    unsigned offs;                          /* removals */
+    unsigned long long off_at;              /* the last one (0: never) */
+    unsigned samples, unpowered;            /* samplings of the channel; those with the power off all through */
+    unsigned missed;                        /* power applied again without an unpowered sampling since its removal */
+    unsigned long long delay_max;           /* the longest from a removal to the end of the first unpowered
+                                             * sampling after it */
+    unsigned long long off_max;             /* the longest removal (until the power came back) */
+    int sampled;                            /* an unpowered sampling since the last removal */
+};
 
 struct h8machine {
     struct h8 h;
     unsigned long long tick_at;             /* the next compare match, 0 while the FRT is not set up */
-    unsigned long long ad_at;               /* the end of the running scan, 0 if none */
+    unsigned long long ad_at;               /* the end of the running conversion, 0 if none */
+    unsigned long long ad_spl_from, ad_spl_at; /* its input sampling; ad_spl_at 0 once taken */
+    uint8_t ad_ch;                          /* its channel */
+    uint8_t ad_read;                        /* ADF read as 1: writing 0 to it clears it */
+    int ad_new;                             /* a conversion was started: the next event may be sooner */
+    uint16_t ad_held;                       /* the level it sampled (raw10) */
     uint16_t ad_raw[4];                     /* raw10 of AN0-AN3 (inputs 3, 2, 1, battery) */
-    void (*ad_input)(struct h8machine *m);  /* if set, called as each scan ends, before its results are stored */
+    void (*ad_input)(struct h8machine *m, unsigned ch); /* if set, called as each sampling of channel ch ends,
+                                             * before ad_raw[ch] is taken */
+    uint8_t sensor_power;                   /* bit n: P6.n an output at 1, the sensor on ANn powered */
+    struct h8m_sensor sensor[3];            /* AN0-AN2 (inputs 3, 2, 1) */
     unsigned long long tx_at;               /* the end of the byte being sent, 0 if the transmitter is idle */
     uint8_t tx_byte;
     unsigned long long rx_at[H8M_RX];       /* bytes to receive, at the end of their frame */
@@ -58,11 +86,20 @@ struct h8machine {
     unsigned long long tone_at;             /* ... and when */
     uint8_t latch;                          /* the motor latch as last written ... */
     unsigned long long latch_at;            /* ... and when it last changed */
+    int resched;                            /* a register was written: the next event may have moved */
+    uint8_t sleep_io[128];                  /* FF80-FFFF as the SLEEP that entered the last standby found them */
     uint8_t lcd[H8M_LCD];                   /* the last complete frame on the LCD bus (START to STOP) */
     unsigned lcd_len, lcd_frames;
     uint8_t lcd_rx[H8M_LCD];                /* the frame being sent */
     unsigned lcd_n, lcd_bits;
     int lcd_in;
+    /* Its timing (h8machine.c lcd_bus): when each line last changed, the last STOP, the START until SCL first
+     * falls; the shortest of each interval (in states, H8M_LCD_HIGH ...; lcd_timed bit k: lcd_least[k] is set),
+     * how many broke their standard-mode limit and what the first was. */
+    unsigned long long lcd_scl_at, lcd_sda_at, lcd_stop_at, lcd_start_at;
+    long long lcd_least[H8M_LCD_TIMES];
+    unsigned lcd_timed, lcd_faults;
+    char lcd_fault[120];
 };
 
 /* Load the image, run its start-up code, reset the peripherals; main() is next. 0 on success. */

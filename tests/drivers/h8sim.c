@@ -23,8 +23,22 @@ static enum region region(uint16_t a)
     return a >= 0xFF88 ? IO : EXTERNAL;
 }
 
+#define P5DDR 0xFFB8
+#define P5DR 0xFFBA
+#define P5_RAM 0x04 /* P5.2: 0 = external RAM awake, 1 = power-save */
+
+/* An access to external RAM (not the motor latch at FF80-FF87) while P5.2 is not an output at 0. */
+static void ram_access(struct h8 *h, uint16_t a, const char *what)
+{
+    if (h->ram_guard && a >= 0x8000 && a < 0xFD80 && !h->ram_fault[0] &&
+        (!(h->mem[P5DDR] & P5_RAM) || (h->mem[P5DR] & P5_RAM)))
+        snprintf(h->ram_fault, sizeof h->ram_fault, "external RAM %s at %04X while P5.2 is %s (pc %04X)", what, a,
+                 h->mem[P5DDR] & P5_RAM ? "high (power-save)" : "not an output", h->pc);
+}
+
 static uint8_t rd8(struct h8 *h, uint16_t a)
 {
+    ram_access(h, a, "read");
     h->states += region(a) == ONCHIP ? 2 : 3;
     if (h->io_read && a >= 0xFF88)
         return h->io_read(h, a, h->mem[a]);
@@ -40,6 +54,7 @@ static void latch(struct h8 *h, uint16_t a, uint8_t v)
 static void wr8(struct h8 *h, uint16_t a, uint8_t v)
 {
     uint8_t was = h->mem[a];
+    ram_access(h, a, "written");
     h->states += region(a) == ONCHIP ? 2 : 3;
     h->mem[a] = v;
     latch(h, a, v);
@@ -68,6 +83,7 @@ void h8_write16(struct h8 *h, uint16_t a, uint16_t v)
 /* A word on an 8-bit bus (external RAM, the register field) is two byte accesses. */
 static uint16_t rd16(struct h8 *h, uint16_t a)
 {
+    ram_access(h, a, "read");
     h->states += region(a) == ONCHIP ? 2 : 6;
     aligned(h, a);
     if (h->io_read && a >= 0xFF88)
@@ -78,6 +94,7 @@ static uint16_t rd16(struct h8 *h, uint16_t a)
 static void wr16(struct h8 *h, uint16_t a, uint16_t v)
 {
     uint8_t was = h->mem[a], was1 = h->mem[(uint16_t)(a + 1)];
+    ram_access(h, a, "written");
     h->states += region(a) == ONCHIP ? 2 : 6;
     aligned(h, a);
     h8_write16(h, a, v);
@@ -91,6 +108,7 @@ static void wr16(struct h8 *h, uint16_t a, uint16_t v)
 
 static uint16_t fetch(struct h8 *h)
 {
+    ram_access(h, h->pc, "fetched");
     uint16_t w = rd16(h, h->pc);
     h->pc = (uint16_t)(h->pc + 2);
     return w;
@@ -99,6 +117,7 @@ static uint16_t fetch(struct h8 *h)
 /* The extra instruction fetch a branch, jump, call or return makes at where it continues. */
 static void prefetch(struct h8 *h)
 {
+    ram_access(h, h->pc, "fetched");
     h->states += region(h->pc) == EXTERNAL ? 6 : 2;
 }
 
@@ -241,7 +260,7 @@ static int membit(struct h8 *h, uint16_t at, uint16_t w1)
     return 0;
 }
 
-int h8_step(struct h8 *h)
+static int step(struct h8 *h)
 {
     uint16_t at = h->pc, w = fetch(h), ea;
     int op = w >> 8, lo = w & 0xFF, hi4 = lo >> 4, lo4 = lo & 15;
@@ -520,6 +539,16 @@ int h8_load_srec(struct h8 *h, const char *path)
     }
     fclose(f);
     return 0;
+}
+
+int h8_step(struct h8 *h)
+{
+    int rc = step(h);
+
+    if (!h->ram_fault[0])
+        return rc;
+    snprintf(h->error, sizeof h->error, "%s", h->ram_fault);
+    return -1;
 }
 
 int h8_step_traced(struct h8 *h)

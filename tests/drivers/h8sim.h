@@ -33,6 +33,11 @@ struct h8 {
     void (*latch_write)(struct h8 *h, uint8_t v);
     int may_sleep;          /* SLEEP sets asleep (for the caller to wake) instead of stopping with an error */
     int asleep;
+    /* If set: external RAM (8000-FD7F) may only be read, written or fetched from while its power-save line P5.2 is
+     * an output driven low (P5DDR FFB8 and P5DR FFBA bit 2, rcx-hardware.md 2.4, 3.1, 3.11): on a real brick it
+     * answers garbage otherwise. The first access that breaks the rule is kept in ram_fault and stops the run. */
+    int ram_guard;
+    char ram_fault[160];
 };
 
 void h8_reset(struct h8 *h);

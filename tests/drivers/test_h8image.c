@@ -126,8 +126,8 @@ static void debounce_as_compiled(void **state)
     memset(&d, 0, sizeof d);
     memset(h.mem + H8_SCRATCH, 0, sizeof d);
     for (unsigned i = 0; i < 5000; i++) {
-        u8 raw = (u8)(rnd() % 16 < 13 ? d.state ^ (i / 37 % 2 ? 0x05 : 0) : rnd() & 15);
-        assert_int_equal((u8)h8_run(&h, "_hw_debounce", H8_SCRATCH, raw, 0, NULL, 0), hw_debounce(&d, raw));
+        u8 raw = (u8)(rnd() % 16 < 13 ? d.state ^ (i / 37 % 2 ? 0x05 : 0) : rnd() & 15), now = (u8)(i / 3 + i / 7);
+        assert_int_equal((u8)h8_run(&h, "_hw_debounce", H8_SCRATCH, raw, now, NULL, 0), hw_debounce(&d, raw, now));
         assert_memory_equal(h.mem + H8_SCRATCH, &d, sizeof d);
     }
 }
@@ -335,6 +335,22 @@ static void assert_slot(unsigned n, uint16_t base)
         assert_int_equal(h8_read16(&h, (uint16_t)(slot + 2 * i)), (uint16_t)((base + 100 * i) << 6));
 }
 
+/* A stand-in for the converter in single mode: a conversion started (ADST without SCAN) is over when ADCSR is next
+ * read, its channel's data register then holding raw10 0x100 + the channel; P6DR as it was then is noted. */
+static uint8_t p6_at_conversion[8];
+static unsigned conversions;
+static uint8_t single_conversion(struct h8 *sim, uint16_t a, uint8_t held)
+{
+    if (a == AD_ADCSR && (held & 0x30) == 0x20) {
+        unsigned ch = held & 7;
+        p6_at_conversion[ch] = sim->mem[P6DR];
+        conversions++;
+        h8_write16(sim, (uint16_t)(0xFFE0 + 2 * (ch & 3)), (uint16_t)((0x100 + ch) << 6));
+        held = sim->mem[a] = (uint8_t)((held | 0x80) & ~0x20); /* ADF; ADST cleared */
+    }
+    return held;
+}
+
 static void timer_interrupt_drives_motors_and_the_scan(void **state)
 {
     uint16_t ticks = var("_drv_ms_ticks"), done = var("_drv_ad_done"), power = var("_drv_sensor_power");
@@ -343,11 +359,11 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     (void)state;
     h8_run(&h, "_hw_motor_set", var("_drv_motors"), 0, HAL_MOTOR_FWD, level, 1); /* A forward, full power */
 
-    /* Passive inputs: the tick reads the scan that ran since the last one and starts the next. Port 6 is left as
-     * it is: an input that no longer wants power lost it when it left the mask (hal_sensor_power, below). */
+    /* Passive inputs: the tick reads the scan, which runs on (ADF, ADST, SCAN, AN0-AN3: a pass made). Port 6 is
+     * left as it is: an input that no longer wants power lost it when it left the mask (hal_sensor_power, below). */
     scan_results(10);
     h.mem[FRT_TCSR] = 0x09; /* OCFA, CCLRA */
-    h.mem[AD_ADCSR] = 0xB3; /* ADF, ADST, SCAN, AN0-AN3 */
+    h.mem[AD_ADCSR] = 0xB3;
     h.mem[P6DR] = 0x68;
     h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
     assert_int_equal(h.mem[FRT_TCSR], 0x01);
@@ -357,51 +373,57 @@ static void timer_interrupt_drives_motors_and_the_scan(void **state)
     step = h.mem[done];
     assert_true(step != 0);
     assert_slot(0, 10);
-    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+    assert_int_equal(h.mem[AD_ADCSR], 0xB3); /* left running */
 
-    /* No scan finished: nothing stored. */
+    /* No pass made yet, or no scan running (start-up, wake-up): nothing stored, the scan started. */
     h.mem[FRT_TCSR] = 0x09;
+    h.mem[AD_ADCSR] = 0x33;
     h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
     assert_int_equal(h.mem[ticks], 2);
     assert_int_equal(h.mem[done], step);
     assert_int_equal(h.mem[AD_ADCSR], 0x33);
+    h.mem[FRT_TCSR] = 0x09;
+    h.mem[AD_ADCSR] = 0x80; /* ADF left set by whoever stopped it */
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    assert_int_equal(h.mem[done], step);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
 
-    /* An active sensor on input 1 (P6.2): unpowered for the scan, which ends in an interrupt. */
-    h.mem[power] = 0x04;
-    h.mem[P6DR] = 0x6C;
+    /* Active sensors on inputs 1 and 3 (P6.2, P6.0; AN2, AN0): the scan stopped, each input converted alone with
+     * its own power (only its) off, and powered again; the slot takes their results and the scan's for input 2,
+     * and the scan starts again. */
+    h.io_read = single_conversion;
+    conversions = 0;
+    h.mem[power] = 0x05;
+    h.mem[P6DR] = 0x6D;
+    scan_results(20);
     h.mem[FRT_TCSR] = 0x09;
     h.mem[AD_ADCSR] = 0xB3;
     h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
-    assert_int_equal(h.mem[ticks], 3);
-    assert_int_equal(h.mem[P6DR], 0x68);
-    assert_int_equal(h.mem[done], step); /* the scan of the unpowered millisecond is not used */
-    assert_int_equal(h.mem[AD_ADCSR], 0x73); /* and ADIE */
-    scan_results(20);
-    h.mem[FRT_TCSR] = 0x01;
-    h.mem[AD_ADCSR] = 0xF3; /* the scan ended */
-    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
-    assert_int_equal(h.mem[ticks], 3);
-    assert_int_equal(h.mem[AD_ADCSR], 0x00); /* stopped before it starts over */
-    assert_int_equal(h.mem[done], 2 * step);
-    assert_slot(1, 20);
-    assert_int_equal(h.mem[P6DR], 0x6C); /* powered again */
-
-    /* Both pending: the scan first, then the tick. */
-    scan_results(30);
-    h.mem[FRT_TCSR] = 0x09;
-    h.mem[AD_ADCSR] = 0xF3;
-    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
-    assert_int_equal(h.mem[ticks], 3);
-    assert_int_equal(h.mem[done], 3 * step);
-    assert_slot(2, 30);
-    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
     assert_int_equal(h.mem[ticks], 4);
-    assert_int_equal(h.mem[AD_ADCSR], 0x73);
-    assert_int_equal(h.mem[P6DR], 0x68);
+    assert_int_equal(conversions, 2);
+    assert_int_equal(p6_at_conversion[0], 0x6C);
+    assert_int_equal(p6_at_conversion[2], 0x69);
+    assert_int_equal(h.mem[P6DR], 0x6D);  /* powered again */
+    assert_int_equal(h.mem[done], 2 * step);
+    assert_int_equal(h8_read16(&h, (uint16_t)(var("_drv_ad_slot") + 8)), 0x100 << 6);
+    assert_int_equal(h8_read16(&h, (uint16_t)(var("_drv_ad_slot") + 10)), 120 << 6);
+    assert_int_equal(h8_read16(&h, (uint16_t)(var("_drv_ad_slot") + 12)), 0x102 << 6);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+
+    /* The same with no pass of the scan made: the passive input's result would be stale, nothing stored. */
+    conversions = 0;
+    h.mem[FRT_TCSR] = 0x09;
+    h.mem[AD_ADCSR] = 0x33;
+    h8_run(&h, "_rcx_timer_irq", 0, 0, 0, NULL, 0);
+    h.io_read = NULL;
+    assert_int_equal(conversions, 2);
+    assert_int_equal(h.mem[P6DR], 0x6D);
+    assert_int_equal(h.mem[done], 2 * step);
+    assert_int_equal(h.mem[AD_ADCSR], 0x33);
 }
 
 /* An input that leaves the mask of powered inputs is unpowered at once, the others keep what they have; one that
- * joins it is powered by the A/D interrupt after the next scan. */
+ * joins it is powered by the tick interrupt after its next conversion. */
 static void sensor_power_leaves_with_the_input(void **state)
 {
     uint16_t power = var("_drv_sensor_power");
@@ -445,12 +467,12 @@ static void timer_interrupt_leaves_out_scans_at_rest(void **state)
     h.mem[rest] = 0;
     tick_with_a_scan_done();
     assert_int_equal(h.mem[done], 3 * step);
-    /* Fed, at rest, the same: left out, the scan started all the same. */
+    /* Fed, at rest, the same: left out, the scan left running. */
     h.mem[seen] = h.mem[done];
     h.mem[rest] = 1;
     tick_with_a_scan_done();
     assert_int_equal(h.mem[done], 3 * step);
-    assert_int_equal(h.mem[AD_ADCSR], 0x33);
+    assert_int_equal(h.mem[AD_ADCSR], 0xB3);
     /* Any input different: stored. The battery's register alone: left out (the main loop reads it itself). */
     for (unsigned i = 0; i < 3; i++) {
         h8_write16(&h, (uint16_t)(0xFFE0 + 2 * i), (uint16_t)((11 + 100 * i) << 6));
@@ -607,7 +629,7 @@ static const struct { uint16_t addr; uint8_t value; const char *name; } after_re
     { 0xFF90, 0x01, "FRT TIER" }, { 0xFF91, 0x00, "FRT TCSR" }, { 0xFF92, 0x00, "FRC high" },
     { 0xFF93, 0x00, "FRC low" }, { 0xFF94, 0xFF, "OCRA high" }, { 0xFF95, 0xFF, "OCRA low" },
     { 0xFF96, 0x00, "FRT TCR" }, { 0xFF97, 0xE0, "FRT TOCR" },
-    { 0xFFB5, 0x00, "P4DDR" }, { 0xFFB7, 0x00, "P4DR" }, { 0xFFB8, 0xF8, "P5DDR" }, { 0xFFB9, 0x00, "P6DDR" },
+    { 0xFFB5, 0x00, "P4DDR" }, { 0xFFB7, 0x00, "P4DR" }, { 0xFFB8, 0xFC, "P5DDR (P5.2 stays an output)" }, { 0xFFB9, 0x00, "P6DDR" },
     { 0xFFBA, 0xF8, "P5DR" }, { 0xFFBB, 0x00, "P6DR" },
     { 0xFFC3, 0xF8, "STCR" }, { 0xFFC4, 0x0B, "SYSCR" }, { 0xFFC6, 0xF8, "ISCR" }, { 0xFFC7, 0xF8, "IER" },
     { 0xFFC8, 0x00, "TMR0 TCR" }, { 0xFFC9, 0x10, "TMR0 TCSR" }, { 0xFFCA, 0xFF, "TMR0 TCORA" },
@@ -619,10 +641,20 @@ static const struct { uint16_t addr; uint8_t value; const char *name; } after_re
     { 0xFFE8, 0x00, "ADCSR" }, { 0xFFE9, 0x7F, "ADCR" },
     { 0xFF80, 0x00, "motor latch" },
     { 0xFD80, 0xFF, "P1DDR shadow" }, { 0xFD81, 0xFF, "P2DDR shadow" }, { 0xFD82, 0x00, "P3DDR shadow" },
-    { 0xFD83, 0x00, "P4DDR shadow" }, { 0xFD84, 0x00, "P5DDR shadow" }, { 0xFD85, 0x00, "P6DDR shadow" },
+    { 0xFD83, 0x00, "P4DDR shadow" }, { 0xFD84, 0x04, "P5DDR shadow" }, { 0xFD85, 0x00, "P6DDR shadow" },
     { 0xFD86, 0x00, "P7 shadow" },
 };
 #define RESET_VECTOR_TARGET 0x03AE /* what the ROM's vector at 0000 holds */
+
+/* Registers filled at random, except P5.2, the external RAM's power-save line: an output at 0 while the brick runs
+ * (the simulator stops on any external-RAM access otherwise). */
+static void fill_registers(uint8_t fill, uint8_t step)
+{
+    for (unsigned i = 0; i < 128; i++)
+        h.mem[0xFF80 + i] = (uint8_t)(fill ^ (step * i));
+    h.mem[0xFFB8] |= 0x04;
+    h.mem[0xFFBA] &= (uint8_t)~0x04;
+}
 
 static int reset_value_of(uint16_t a, uint8_t *v)
 {
@@ -641,7 +673,7 @@ static void registers_the_drivers_write(uint8_t written[128])
     memset(written, 0, 128);
     for (unsigned f = 0; f < 2; f++) {
         assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
-        memset(h.mem + 0xFF80, fill[f], 128);
+        fill_registers(fill[f], 0);
         h8_run(&h, "_drv_outputs_on", 0, 0, 0, NULL, 0);
         h8_run(&h, "_drv_tick_start", 1, 0, 0, NULL, 0);
         h8_run(&h, "_sci_start", HAL_IR_4800 | HAL_IR_76KHZ | HAL_IR_DUTY25, 0, 0, NULL, 0);
@@ -661,8 +693,7 @@ static void hand_back_leaves_registers_as_after_reset(void **state)
     registers_the_drivers_write(written);
     /* The brick as it runs: the drivers' settings, flags standing, the standby code at FD80. */
     assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
-    for (unsigned i = 0; i < 128; i++)
-        h.mem[0xFF80 + i] = (uint8_t)(0x5A ^ i);
+    fill_registers(0x5A, 1);
     memset(h.mem + 0xFD80, 0x6D, 16);
     h.mem[0] = RESET_VECTOR_TARGET >> 8;
     h.mem[1] = RESET_VECTOR_TARGET & 0xFF;

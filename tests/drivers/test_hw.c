@@ -260,11 +260,13 @@ static void buttons_are_active_low_on_their_pins(void **state)
     assert_int_equal(hw_buttons(0x06 | 0x00, 0xC0), 0);                      /* other pins do not count */
 }
 
+/* n looks a millisecond apart on the clock `now`. */
+static u8 now;
 static u8 feed(struct hw_debounce *d, u8 raw, unsigned n)
 {
     u8 changed = 0;
     while (n--)
-        changed |= hw_debounce(d, raw);
+        changed |= hw_debounce(d, raw, now++);
     return changed;
 }
 
@@ -275,14 +277,32 @@ static void debounce_needs_a_steady_level(void **state)
     memset(&d, 0, sizeof d);
     assert_int_equal(feed(&d, 0, 100), 0);
     for (u8 i = 1; i < HW_DEBOUNCE_MS; i++) /* a bounce at every level up to the last sample */
-        assert_int_equal(feed(&d, 1, i) | hw_debounce(&d, 0), 0);
+        assert_int_equal(feed(&d, 1, i) | hw_debounce(&d, 0, now++), 0);
     assert_int_equal(feed(&d, 1, HW_DEBOUNCE_MS - 1), 0);
-    assert_int_equal(hw_debounce(&d, 1), 1); /* exactly the HW_DEBOUNCE_MS-th steady sample */
+    assert_int_equal(hw_debounce(&d, 1, now++), 1); /* exactly the HW_DEBOUNCE_MS-th steady sample */
     assert_int_equal(d.state, 1);
     assert_int_equal(feed(&d, 1, 100), 0);
     assert_int_equal(feed(&d, 0, HW_DEBOUNCE_MS - 1), 0);
-    assert_int_equal(hw_debounce(&d, 0), 1);
+    assert_int_equal(hw_debounce(&d, 0, now++), 1);
     assert_int_equal(d.state, 0);
+}
+
+/* Issue 15 item 6: the time counts, not the looks. A main loop catching up on milliseconds looks many times within
+ * microseconds (the clock unchanged, or a millisecond on): a bounce seen then is no press. */
+static void debounce_counts_time_not_looks(void **state)
+{
+    struct hw_debounce d;
+    u8 t = 250; /* across the clock's wrap */
+    unsigned i;
+    (void)state;
+    memset(&d, 0, sizeof d);
+    for (i = 0; i < 100; i++) /* 100 looks down within 2 ms, then one up */
+        assert_int_equal(hw_debounce(&d, 1, (u8)(t + i / 50)), 0);
+    assert_int_equal(hw_debounce(&d, 0, (u8)(t + 2)), 0);
+    for (i = 0; i < 100; i++) /* down again: HW_DEBOUNCE_MS - 1 ms from the first look of it on */
+        assert_int_equal(hw_debounce(&d, 1, (u8)(t + 3 + i * (HW_DEBOUNCE_MS - 2) / 99)), 0);
+    assert_int_equal(hw_debounce(&d, 1, (u8)(t + 3 + HW_DEBOUNCE_MS - 1)), 1);
+    assert_int_equal(d.state, 1);
 }
 
 static void a_second_button_restarts_the_count(void **state)
@@ -292,7 +312,7 @@ static void a_second_button_restarts_the_count(void **state)
     memset(&d, 0, sizeof d);
     assert_int_equal(feed(&d, 0x02, HW_DEBOUNCE_MS - 2), 0);
     assert_int_equal(feed(&d, 0x0A, HW_DEBOUNCE_MS - 1), 0);
-    assert_int_equal(hw_debounce(&d, 0x0A), 0x0A);
+    assert_int_equal(hw_debounce(&d, 0x0A, now++), 0x0A);
 }
 
 /* ---- LCD, §3.6 ---- */
@@ -370,6 +390,7 @@ int main(void)
         cmocka_unit_test(carrier_settings_for_each_mode),
         cmocka_unit_test(buttons_are_active_low_on_their_pins),
         cmocka_unit_test(debounce_needs_a_steady_level),
+        cmocka_unit_test(debounce_counts_time_not_looks),
         cmocka_unit_test(a_second_button_restarts_the_count),
         cmocka_unit_test(lcd_frames_carry_the_commands_and_the_image),
         cmocka_unit_test(ring_keeps_order_and_error_marks),

@@ -133,7 +133,13 @@ static void watch_view(void **state)
     set[1] = 23;
     set[2] = 59;
     user_view(b, 0, 2, 77);
-    brick_cmd(b, set, 3, NULL);        /* SetWatch selects the watch (spec p. 51) */
+    brick_cmd(b, set, 3, NULL);        /* SetWatch selects the watch (spec p. 51) ... */
+    assert_int_equal(b->display.view, DISPLAY_USER); /* ... but not over a program's own view: firm0328 keeps it */
+    assert_int_equal(b->watch, 23 * 60 + 59);
+    select_view(b, 0);
+    expect_watch(b, "23.59");
+    select_view(b, 2);
+    brick_cmd(b, set, 3, NULL);        /* from an input's view it does */
     expect_watch(b, "23.59");
     for (ms = 0; ms < 60000; ms++)
         vm_tick(b);

@@ -31,6 +31,35 @@ static int setup(void **state)
     return 0;
 }
 
+static void ms(unsigned n);
+
+/* The brick as a user meets it: the double beep it starts with (firm0328 plays it, issue 15) heard out. */
+static int setup_started(void **state)
+{
+    setup(state);
+    ms(500);
+    return 0;
+}
+
+/* firm0328 plays system sound 1, two beeps of 996 Hz for 160 ms 60 ms apart, when it starts
+ * (reference-firmware.md "The brick's face", issue 15). */
+static void starting_plays_the_double_beep(void **state)
+{
+    unsigned t, on = 0, starts = 0, was = 0;
+    (void)state;
+    for (t = 0; t < 600; t++) {
+        ms(1);
+        if (h->sound_hz == 996)
+            on++;
+        else if (h->sound_hz)
+            fail_msg("a %u Hz tone at %u ms", h->sound_hz, t);
+        starts += h->sound_hz && !was;
+        was = h->sound_hz;
+    }
+    assert_int_equal(starts, 2);
+    assert_in_range(on, 2 * 159, 2 * 161);
+}
+
 static int teardown(void **state)
 {
     (void)state;
@@ -309,15 +338,16 @@ static void battery_mark_has_hysteresis(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(starting_plays_the_double_beep, setup, teardown),
         cmocka_unit_test_setup_teardown(run_starts_task_0_with_motors_forward_braked_full, setup, teardown),
         cmocka_unit_test_setup_teardown(run_again_stops_everything_and_brakes, setup, teardown),
         cmocka_unit_test_setup_teardown(prgm_cycles_five_programs_and_brakes, setup, teardown),
         cmocka_unit_test_setup_teardown(prgm_stops_a_running_program, setup, teardown),
         cmocka_unit_test_setup_teardown(view_cycles_inputs_and_outputs_then_returns, setup, teardown),
-        cmocka_unit_test_setup_teardown(presses_click_releases_do_nothing, setup, teardown),
+        cmocka_unit_test_setup_teardown(presses_click_releases_do_nothing, setup_started, teardown),
         cmocka_unit_test_setup_teardown(view_from_a_user_display_goes_to_the_watch, setup, teardown),
-        cmocka_unit_test_setup_teardown(on_off_clicks_powers_down_and_keeps_memory, setup, teardown),
-        cmocka_unit_test_setup_teardown(switching_off_by_itself_clicks_too, setup, teardown),
+        cmocka_unit_test_setup_teardown(on_off_clicks_powers_down_and_keeps_memory, setup_started, teardown),
+        cmocka_unit_test_setup_teardown(switching_off_by_itself_clicks_too, setup_started, teardown),
         cmocka_unit_test_setup_teardown(power_down_time_counts_idle_minutes, setup, teardown),
         cmocka_unit_test_setup_teardown(power_down_time_zero_never_sleeps, setup, teardown),
         cmocka_unit_test_setup_teardown(turn_off_waits_for_the_reply_and_needs_a_power_down_time, setup, teardown),
