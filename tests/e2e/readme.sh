@@ -1,8 +1,8 @@
 #!/bin/sh
 # The README's commands, as a newcomer copies them: every nqc command line in it that compiles a program names the
 # RCX 2.0 target, or Swan's in its own section (Debian's nqc compiles for the RCX 1.0 by default, where SetUserDisplay
-# does not exist), and the
-# virtual RCX's example, run as written against rcxsim, downloads and starts an RCX 2.0 program.
+# does not exist), and the virtual RCX's example, run as written against rcxsim, downloads and starts an RCX 2.0
+# program.
 . "$E2E_DIR/lib.sh"
 README="$E2E_DIR/../../README.md"
 # Command lines in backticks or code blocks that run nqc on a .nqc source.
