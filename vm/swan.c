@@ -1,8 +1,8 @@
 /*
  * Swan's program opcodes (rcx_opcodes.def, swan-target.md 2), with OpenRCX's rules where Swan is silent (4). One
- * decoder for the arithmetic: every form (global op= k8 / word / source, source op= source) becomes a destination
- * operand and a value, the operation comes from the family's low three bits or the row, and ops_arith() computes it
- * as it does RCX 2.0's SetVar..OrVar. Written for size: this is firmware code.
+ * decoder for the arithmetic: every form (global op= k8 / word / source, source op= source) becomes a destination (a
+ * global, or a source operand) and a value, the operation comes from the family's low three bits or the row, and
+ * ops_arith() computes it as it does RCX 2.0's SetVar..OrVar. Written for size: this is firmware code.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -21,28 +21,23 @@ static const u8 arith_of[8 + SW_NEG - SW_SET + 1] = {
 u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
 {
     u8 op = ins[0], kind = r->kind, f = arith_of[op & 7], i;
-    u8 global[4];                      /* a source-43 operand for op g ...: T, index low, high */
-    const u8 *dst = ins;               /* dst[1] the destination's source, dst + 2 its 16-bit index */
     s16 v;
 
-    if (kind <= SW_NEG) {
-        if (kind == SW_GLOBAL) {       /* op g k8 / op g H L / op g T v8 */
-            global[1] = RCX_SRC_GLOBAL;
-            global[2] = ins[1];
-            global[3] = 0;
-            dst = global;
-            v = ins[2];                /* byte constants are unsigned */
-            if (r->params & 1)         /* four bytes: a word high byte first, or a source */
-                v = (op & 0x80) || op == RCX_SW_SET_G ? ops_source8(b, t, ins + 1)
-                                                      : (s16)(u16)((u16)ins[2] << 8 | ins[3]);
-            if (!(op & 0x40))
-                f = ARITH_SET;         /* 0x2B-0x2D */
-        } else {                       /* op Td d16 Ts s16 */
-            v = ops_source(b, t, ins + 3);
-            if (kind != SW_SOURCE)
-                f = arith_of[8 + kind - SW_SET];
-        }
-        ops_store(b, t, dst, ops_arith(f, ops_source(b, t, dst), v));
+    if (kind == SW_GLOBAL) {           /* op g k8 / op g H L / op g T v8 */
+        s16 *g = &b->global[ins[1]];
+        v = ins[2];                    /* byte constants are unsigned */
+        if (r->params & 1)             /* four bytes: a word high byte first, or a source */
+            v = (op & 0x80) || op == RCX_SW_SET_G ? ops_source8(b, t, ins + 1) : (s16)(u16)((u16)ins[2] << 8 | ins[3]);
+        if (!(op & 0x40))
+            f = ARITH_SET;             /* 0x2B-0x2D */
+        *g = ops_arith(f, *g, v);
+        return 0;
+    }
+    if (kind <= SW_NEG) {              /* op Td d16 Ts s16 */
+        v = ops_source(b, t, ins + 3);
+        if (kind != SW_SOURCE)
+            f = arith_of[8 + kind - SW_SET];
+        ops_store(b, t, ins, ops_arith(f, ops_source(b, t, ins), v));
         return 0;
     }
     if (kind == SW_CLEAR_ALL) {
