@@ -11,6 +11,18 @@
 #define RCX_GLOBALS 32      /* persistent global variables 0-31 */
 #define RCX_LOCALS 16       /* locals per task, variable numbers 32-47 */
 #define RCX_VARS (RCX_GLOBALS + RCX_LOCALS)
+
+/* Swan's programs (nqc -TSwan, issue 16): 1 in the host build; 0 leaves them out of a build (the firmware image, until
+ * they fit its budget), which then runs RCX 2.0 code as before, with its globals and locals in one array. */
+#ifndef RCX_SWAN
+#define RCX_SWAN 1
+#endif
+/* One array of globals: 0-31 RCX 2.0's, task t's locals at 32 + 16 t (Swan's overlay, swan-target.md 4), Swan's up
+ * to 255. */
+#define RCX_ALL_GLOBALS (RCX_SWAN ? 256 : RCX_GLOBALS + RCX_TASKS * RCX_LOCALS)
+#define RCX_SWAN_STACK 8    /* push (0xE3) entries per task before overflow stops it */
+#define RCX_SYSTEM 39       /* Swan's system settings, source 24 index 0-38 */
+#define RCX_SWAN_N(n) (RCX_SWAN ? (n) : 1) /* the size of an array only Swan's programs use */
 #define RCX_TIMERS 4        /* 100 ms system timers */
 #define RCX_LOOP_LEVELS 4   /* SetLoopCounter nesting */
 #define RCX_EVENTS 16

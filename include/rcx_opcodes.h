@@ -16,6 +16,7 @@
 #define RCX_OPCODES_H
 
 #include "rcx_types.h"
+#include "rcx_limits.h"
 
 #define RCX_DIRECT 0x01
 #define RCX_PROGRAM 0x02
@@ -55,6 +56,41 @@ u8 rcx_op_reply(u8 op);
 /* Operand bytes an instruction occupies in program code (unknown opcodes: the nominal count). */
 u8 rcx_op_params(u8 op);
 
+/*
+ * Swan's program opcodes (the RCX_SWAN_OP rows of rcx_opcodes.def). The firmware keeps one 3-byte row per line of the
+ * table: the opcode, its operand bytes (bits 0-2) and bit 3 for a family of eight, and what runs it (enum
+ * rcx_swan_kind, vm/swan.c).
+ */
+enum rcx_swan_op {
+#define RCX_SWAN_OP(code, n, id, lasm, params, kind, layout) RCX_SW_##id = code,
+#define RCX_OP(code, id, name, lasm, params, avail, reply, layout)
+#include "rcx_opcodes.def"
+#undef RCX_OP
+#undef RCX_SWAN_OP
+    RCX_SW_NONE = 0x100
+};
+enum rcx_swan_kind {
+    SW_GLOBAL = 0, /* global[g] op= k8 / word / S(T, v8); op by the low three bits, 0x2B-0x2D: = */
+    SW_SOURCE,     /* S(d) op= S(s); op by the low three bits */
+    SW_SET, SW_ABS, SW_SGN, SW_BSET, SW_BCLR, SW_XOR, SW_SHL, SW_SHR, SW_NEG, /* S(d) = f(S(d), S(s)) */
+    SW_WAIT_MS, SW_CLEAR_ALL, SW_PUSH, SW_POP,
+    SW_MSG_BYTE, SW_MSG_WORD, SW_SEND_PARAM, SW_SET_PARAM /* message and parameter: m k8, m k16, T v8 T v16 */
+};
+#define RCX_SWAN_FAMILY 0x08
+struct rcx_swan_row {
+    u8 code;
+    u8 params;      /* bits 0-2 operand bytes, RCX_SWAN_FAMILY: code..code + 7 */
+    u8 kind;
+};
+/* The row of a Swan opcode, all eight bits of it; NULL for any other byte. */
+#if RCX_SWAN
+const struct rcx_swan_row *rcx_swan_find(u8 op);
+#else
+#define rcx_swan_find(op) ((void)(op), (const struct rcx_swan_row *)0)
+#endif
+/* Operand bytes of the instruction at the start of program code: Swan's, or as rcx_op_params(). */
+u8 rcx_prog_params(u8 op);
+
 /* Name tables with every column of the table, for the host disassembler and tests (not in the firmware). */
 struct rcx_opname {
     u8 code;
@@ -66,6 +102,17 @@ struct rcx_opname {
     u8 avail;
     u8 reply;
 };
+struct rcx_swanname {
+    u8 code, count, params, kind;
+    const char *id;
+    const char *lasm;   /* %s: the family's operation, rcx_swan_ops[code & 7] */
+    const char *layout;
+};
+extern const struct rcx_swanname rcx_swannames[];
+extern const unsigned rcx_swanname_count;
+extern const char *const rcx_swan_ops[8];
+/* The row naming a Swan opcode (of a family: its head), NULL for any other byte. */
+const struct rcx_swanname *rcx_swanname_find(u8 op);
 extern const struct rcx_opname rcx_opnames[];
 extern const unsigned rcx_opname_count;
 const struct rcx_opname *rcx_opname_find(u8 op);

@@ -205,7 +205,12 @@ void ir_poll(struct rcx_brick *k)
             len = k->ir.reply_len;
             k->ir.tx_pack = IR_PACK_STANDARD;
             k->ir.tx_mode = 0;
-        } else if (k->vm.remote.tx_len && k->ir.rx_state == IR_RX_IDLE && k->ir.quiet >= IR_SENSE_MS && ir_idle(k)) {
+        } else if ((k->vm.remote.tx_len || (RCX_SWAN && k->vm.remote.follow)) && k->ir.rx_state == IR_RX_IDLE &&
+                   k->ir.quiet >= IR_SENSE_MS && ir_idle(k)) {
+#if RCX_SWAN
+            if (!k->vm.remote.tx_len)
+                remote_sent(&k->vm); /* the message after its parameter, now that the room is quiet (vm/remote.h) */
+#endif
             /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
              * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
              * on. */

@@ -84,10 +84,11 @@ void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies an
 /* Whether the call can change anything: nearly every millisecond it cannot, and these are cheaper than the calls.
  * At rest (nobody heard for IR_QUIET_MS, no echo outstanding or being timed) the receiver is back to looking for a
  * packet, and counting `quiet` further changes nothing: it is only compared with IR_QUIET_MS and smaller times.
- * With nothing being sent, no packet to answer, no request and the range as it was, there is nothing to poll for. */
+ * With nothing being sent, no packet to answer, no request (nor a message to follow its parameter) and the range as
+ * it was, there is nothing to poll for. */
 #define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
 #define ir_poll_due(k) ((k)->ir.tx_pos < (k)->ir.tx_total || (k)->ir.rx_state == IR_RX_READY || \
-                        (k)->vm.remote.tx_len || (k)->ir.range != (k)->vm.tx_range)
+                        (k)->vm.remote.tx_len || (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
 u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */
 
 #endif

@@ -51,7 +51,7 @@ static inline u8 rt_quiet(const struct rcx_brick *k)
 
     /* An IR exchange or a switch-off is in progress only while ir_tick() is due or a sound plays: ir_poll() and
      * ui_poll() do all they can without the clock. */
-    if (ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset)
+    if (ir_tick_due(k) || vm_pausing(b) || vm_sounding(b) || b->idle_reset || (RCX_SWAN && (b->waiting & WAIT_MS)))
         return 0;
     return (u8)(9 - b->ms); /* the step's last millisecond is rt_tick()'s */
 }
@@ -59,6 +59,8 @@ static inline u8 rt_quiet(const struct rcx_brick *k)
 static inline void rt_skip(struct rcx_brick *k, u8 n)
 {
     k->vm.ms = (u8)(k->vm.ms + n);
+    if (RCX_SWAN)
+        k->vm.ms_now = (u16)(k->vm.ms_now + n);
     k->vm.watch_ms = (u16)(k->vm.watch_ms + n);
     k->ui.idle_ms = (u16)(k->ui.idle_ms + n);
 }

@@ -102,7 +102,11 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     b->dl.expect++;
     if (seq == 0) {                /* the last block: the code may run from now on */
         b->dl.active = 0;
+#if RCX_SWAN
+        swan_download_done(b); /* the object's final size, and its slot's kind (vm/swan.c) */
+#else
         mem_resize(b, b->dl.obj, b->dl.filled);
+#endif
     }
     return DL_OK;
 }
@@ -128,6 +132,10 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     u8 flags = rcx_opflags[rcx_op_index(op)];
     u8 n = 0, i, c;
 
+#if RCX_SWAN
+    if (op == RCX_SW_MSG_WORD && len >= 4)
+        remote_param_received(b, cmd); /* a Swan message's parameter, ahead of it (vm/remote.h): no reply */
+#endif
     if (!(flags & (RCX_DIRECT << 3)))
         return 0;                  /* unknown or program-only: not answered */
     if (op != RCX_OP_CONTINUE_DL && len < 1 + rcx_op_params(op))

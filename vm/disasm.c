@@ -4,18 +4,21 @@
 #include "disasm.h"
 
 static const char *const source_names[] = {
-    "var", "Timer", "", "MotorStatus", "Random", "?5", "?6", "?7", "Program", "Input", "SensorType", "SensorMode",
-    "SensorRaw", "SensorBool", "Watch", "Message", "?16", "GlobalMotor", "?18", "?19", "?20", "Counter", "?22",
-    "TaskEvents", "?24", "EventState", "FastTimer", "ClickCounter", "UpperLimit", "LowerLimit", "Hysteresis",
-    "Duration", "?32", "uart", "Battery", "FirmwareVersion", "*var",
+    "var", "Timer", "", "MotorStatus", "Random", "PwrSigned", "?6", "BrakePwr", "Program", "Input", "SensorType",
+    "SensorMode", "SensorRaw", "SensorBool", "Watch", "Message", "Power128", "GlobalMotor", "EventType", "Event",
+    "EventCnt", "Counter", "MSTimer", "TaskEvents", "System", "EventState", "FastTimer", "ClickCounter",
+    "UpperLimit", "LowerLimit", "Hysteresis", "Duration", "Power8", "uart", "Battery", "FirmwareVersion", "*var",
+    "LogTypeInd", "LogTypeDir", "LogValInd", "LogValDir", "LogByteInd", "LogByteDir", "gvar", "*gvar",
 };
 
 static int put_source(char *p, size_t n, unsigned src, int value)
 {
     if (src == 2)
         return snprintf(p, n, "%d", value);
-    if (src == 0 || src == 33)
+    if (src == 0 || src == 33 || src == 43)
         return snprintf(p, n, "%s[%d]", source_names[src], value);
+    if (src == 44)
+        return snprintf(p, n, "*gvar[%d]", value);
     if (src < sizeof source_names / sizeof source_names[0])
         return snprintf(p, n, "%s(%d)", source_names[src], value);
     return snprintf(p, n, "src%u(%d)", src, value);
@@ -45,34 +48,44 @@ unsigned rcx_disasm_one(const u8 *code, unsigned size, unsigned pc, char *buf, s
 {
     u8 op = (u8)(code[pc] & ~RCX_TOGGLE);
     const struct rcx_opname *name = rcx_opname_find(op);
-    unsigned len = 1u + rcx_op_params(op);
-    const char *layout;
+    const struct rcx_swanname *swan = rcx_swanname_find(code[pc]); /* all eight bits, as the interpreter */
+    unsigned len = 1u + rcx_prog_params(code[pc]);
+    const char *layout, *layouts;
+    char mnemonic[16];
     const u8 *a = code + pc + 1;
     unsigned field = pc + 1;
     char *p = buf;
     size_t left = bufsize;
     int w;
 
-    if (op == RCX_OP_CONTINUE_DL && pc + 5 <= size)
+    if (!swan && op == RCX_OP_CONTINUE_DL && pc + 5 <= size)
         len = 6u + RCX_LE16(code + pc + 3);
     if (pc + len > size) {
         snprintf(buf, bufsize, "(truncated)");
         return 0;
     }
-    if (!name) {
+    if (swan) {
+        snprintf(mnemonic, sizeof mnemonic, swan->lasm, rcx_swan_ops[code[pc] & 7]);
+        layouts = swan->layout;
+    } else if (name) {
+        snprintf(mnemonic, sizeof mnemonic, "%s", name->lasm[0] ? name->lasm : name->name);
+        layouts = name->layout;
+    } else {
         snprintf(buf, bufsize, "?%02x", op);
         return len;
     }
-    w = snprintf(p, left, "%-8s ", name->lasm[0] ? name->lasm : name->name);
+    w = snprintf(p, left, "%-8s ", mnemonic);
     p += w, left -= (size_t)w;
-    for (layout = name->layout; *layout && left > 1; layout++) {
-        if (layout != name->layout) {
+    for (layout = layouts; *layout && left > 1; layout++) {
+        if (layout != layouts) {
             w = snprintf(p, left, ", ");
             p += w, left -= (size_t)w;
         }
         switch (*layout) {
         case 'b': case 'x': w = snprintf(p, left, "%u", a[0]); a += 1; break;
         case 'v': w = snprintf(p, left, "var[%u]", a[0]); a += 1; break;
+        case 'g': w = snprintf(p, left, "gvar[%u]", a[0]); a += 1; break;
+        case 'H': w = snprintf(p, left, "%d", (s16)(u16)(a[0] << 8 | a[1])); a += 2; break;
         case 'w': w = snprintf(p, left, "%u", RCX_LE16(a)); a += 2; break;
         case 's': w = put_source(p, left, a[0], a[1]); a += 2; break;
         case 'S': w = put_source(p, left, a[0], (s16)RCX_LE16(a + 1)); a += 3; break;

@@ -36,6 +36,7 @@ static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
  */
 #define OUTSIDE 0xFFFFu /* negative as an s16, unlike any offset in a code object: the one test for "outside" */
 RCX_STATIC_ASSERT(offsets_positive, RCX_ARENA_SIZE < 0x8000u);
+RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
 #define NOT_AN_OP 0x08 /* has the toggle bit: no opcode reaches the search with it */
 static const u8 control[] = {
     RCX_OP_SCHECK_DO, RCX_OP_LCHECK_DO,
@@ -69,7 +70,13 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     struct rcx_task *t = &b->task[n];
     u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
     const u8 *ins;
+#if RCX_SWAN
+    const struct rcx_swan_row *sw;
+#endif
     u8 op, i, jump = 0, len, flags;
+#if RCX_SWAN
+    u8 ms = 0;                         /* the wait is WaitMS's */
+#endif
     s16 value;
     s16 *var;
 
@@ -79,6 +86,21 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         goto stop;                     /* a task ends there */
     }
     ins = b->arena + at[0] + pc;
+#if RCX_SWAN
+    if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
+        len = (u8)(sw->params & 7);
+        if ((u16)(size - pc) <= len)
+            goto stop;
+        t->pc = (u16)(pc + 1 + len);
+        if (sw->kind == SW_WAIT_MS) {
+            ms = 1;
+            goto wait;
+        }
+        if (!swan_exec(b, t, ins, sw))
+            return;
+        goto stop;
+    }
+#endif
     op = (u8)(ins[0] & ~RCX_TOGGLE);
     flags = rcx_opflags[rcx_op_index(op)];
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
@@ -183,12 +205,21 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             break;
         goto stop;
     case C_WAIT:
+#if RCX_SWAN
+    wait:                              /* and Swan's WaitMS (ms = 1) */
+#endif
         value = ops_source(b, t, ins);
         if (value <= 0)
             break;                     /* negative: ignored (spec p. 67); zero: no wait */
-        /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step. */
+        /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
+#if RCX_SWAN
+        t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
+        t->wait_ms = ms;
+        b->waiting |= (u8)(ms + 1);    /* WAIT_MS or WAIT_10MS */
+#else
         t->wake = (u16)(b->ticks10 + (u16)value);
-        b->waiting = 1;
+        b->waiting = WAIT_10MS;
+#endif
         sched_set_state(b, t, RCX_TASK_WAITING);
         break;
     case C_EXIT_EVENT:
@@ -229,7 +260,7 @@ RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offset
 RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
 RCX_STATIC_ASSERT(rf_arena, offsetof(struct rcx, arena) == RF_ARENA && offsetof(struct rcx, obj_start) == 0);
 RCX_STATIC_ASSERT(rf_task, sizeof(struct rcx_task) == RF_TASK_SIZE && offsetof(struct rcx_task, sub) == RF_SUB
-                           && offsetof(struct rcx_task, pc) == RF_PC && offsetof(struct rcx_task, local) == RF_LOCAL);
+                           && offsetof(struct rcx_task, pc) == RF_PC && offsetof(struct rcx_task, local_base) == RF_LOCAL_BASE);
 RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX_SLOT_OBJS == RF_SLOT_OBJS
                              && RCX_NO_SUB == RF_NO_SUB && RCX_GLOBALS == RF_GLOBALS && RCX_LOCALS == RF_LOCALS);
 RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR
@@ -298,7 +329,7 @@ sjump:
     if (!--count)
         goto leave;
 dispatch:
-    op = (u8)(ip[0] & ~RCX_TOGGLE);
+    op = ip[0];                        /* all eight bits: 0x2C and 0x2F are Swan's, not SumVar and SJump */
     room = (u16)(end - ip);            /* bytes from the opcode to the end of the code, at least 1 */
     if (op == RCX_OP_SJUMP)
         goto sjump;
@@ -311,14 +342,12 @@ dispatch:
         value = (u16)b->global[value];
     }
     v = ip[1];
-    var = b->global;
     if (v >= RCX_GLOBALS) {
-        v = (u8)(v - RCX_GLOBALS);
-        if (v >= RCX_LOCALS)
+        if (v >= RCX_VARS)
             goto leave;
-        var = t->local;
+        v = (u8)(v + t->local_base);   /* the task's local: swan-target.md 4 */
     }
-    var += v;
+    var = &b->global[v];
     old = (u16)*var;
     if (op != RCX_OP_SUM_VAR) {
         if (op == RCX_OP_SUB_VAR)

@@ -8,7 +8,10 @@
 
 /* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `kind` is the
  * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart: a dense switch. */
-static s16 arith(u8 kind, s16 a, s16 v)
+#if !RCX_SWAN
+static
+#endif
+s16 ops_arith(u8 kind, s16 a, s16 v)
 {
     switch (kind) {
     case RCX_OP_SET_VAR >> 4: return v;
@@ -24,7 +27,36 @@ static s16 arith(u8 kind, s16 a, s16 v)
     case RCX_OP_SGN_VAR >> 4: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
     case RCX_OP_ABS_VAR >> 4: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
     case RCX_OP_AND_VAR >> 4: return (s16)(a & v);
+#if RCX_SWAN
+    case RCX_OP_OR_VAR >> 4:  return (s16)(a | v);
+#endif
+#if RCX_SWAN
+    /* Swan's (swan-target.md 4) */
+    case ARITH_COMP:          return (s16)~v;
+    case ARITH_MOD:
+        if (v == 0)
+            return a;
+        if (v == -1)
+            return 0;                            /* -32768 % -1, without the trap */
+        return (s16)(a % v);                     /* the sign of the dividend */
+    case ARITH_XOR:           return (s16)(a ^ v);
+    case ARITH_NEG:           return (s16)(u16)(0u - (u16)v);
+    case ARITH_SHR:
+        v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
+        /* fall through */
+    case ARITH_SHL:
+        if (v < 0) {                             /* right, arithmetic: 16 or more leaves the sign */
+            u16 n = (u16)(0u - (u16)v);
+            return (s16)(a >> (n >= 16 ? 15 : n));
+        }
+        return v >= 16 ? 0 : (s16)(u16)((u16)a << v);
+    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15 */
+        if ((u16)v >= 16)
+            return a;
+        return (s16)(kind == ARITH_BSET ? (u16)a | (u16)(1u << v) : (u16)a & (u16)~(1u << v));
+#else
     default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
+#endif
     }
 }
 
@@ -75,6 +107,13 @@ s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins)
     return source_get(b, t, ins[1], RCX_LE16(ins + 2));
 }
 
+#if RCX_SWAN
+void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value)
+{
+    source_set(b, t, ins[1], RCX_LE16(ins + 2), value);
+}
+#endif
+
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins)
 {
     return source_get(b, t, ins[1], ins[2]);
@@ -85,7 +124,7 @@ void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
     s16 value = ops_source(b, t, ins + 1); /* the source one byte on */
     s16 *var = var_ref(b, t, ins[1]);
     if (var)
-        *var = arith((u8)(ins[0] >> 4), *var, value); /* the toggle bit is bit 3 */
+        *var = ops_arith((u8)(ins[0] >> 4), *var, value); /* the toggle bit is bit 3 */
 }
 
 /*
@@ -108,13 +147,22 @@ OP(op_turn_off)
         b->turn_off = 1;
 }
 OP(op_clear_sound) { UNUSED_T; UNUSED_INS; sound_clear(b); }
-static void set_message(struct rcx *b, u8 m)
+void ops_set_message(struct rcx *b, u8 m)
 {
     b->message = m;
     events_message_changed(b); /* ClearPBMessage too: firm0328 raises a mailbox event for it */
 }
-OP(op_clear_message) { UNUSED_T; UNUSED_INS; set_message(b, 0); }
-OP(op_message) { UNUSED_T; set_message(b, ins[1]); }
+OP(op_clear_message) { UNUSED_T; UNUSED_INS; ops_set_message(b, 0); }
+OP(op_message)
+{
+#if RCX_SWAN
+    if (!t) /* received: a plain message has parameter 0 (swan-target.md 4), one after a B3 that one's */
+        b->msg_param = remote_message_received(b, ins[1]);
+#else
+    UNUSED_T;
+#endif
+    ops_set_message(b, ins[1]);
+}
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
 OP(op_clear_events) { UNUSED_T; UNUSED_INS; events_clear_all(b); }

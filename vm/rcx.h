@@ -32,6 +32,9 @@ enum rcx_task_state {
     RCX_TASK_WAITING    /* Wait in progress: costs nothing until its 10 ms tick comes */
 };
 
+#define WAIT_10MS 1
+#define WAIT_MS 2
+
 struct rcx_task {
     u8 state;
     u8 sub;         /* subroutine being executed, or RCX_NO_SUB */
@@ -43,8 +46,13 @@ struct rcx_task {
     u8 priority;    /* 0 most important; decides access control only */
     u8 loop_depth;
     u8 loop[RCX_LOOP_LEVELS];
-    s16 local[RCX_LOCALS]; /* variables 32-47 */
+    u8 local_base;  /* variable 32-47 is global[n + local_base]: 16 x task in an RCX 2.0 program, 0 in a Swan one */
+    u8 spare;       /* (ev's words are aligned) */
     struct rcx_task_events ev; /* monitoring and access control */
+#if RCX_SWAN /* last: the rest is laid out the same with and without (tests/drivers/test_h8tasks.c) */
+    u8 stack;       /* Swan push/pop depth (the values are readable by no source OpenRCX has) */
+    u8 wait_ms;     /* the wait is WaitMS's: wake is a value of rcx.ms_now */
+#endif
 };
 
 /* A task or subroutine download in progress (BeginOfTask/BeginOfSub then ContinueDL blocks). */
@@ -69,8 +77,9 @@ struct rcx {
     u8 rr;          /* next task the round-robin scheduler visits */
     u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
     volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
-    u8 waiting;     /* set when a task starts a Wait, cleared once none waits: 0 means none does */
-    s16 global[RCX_GLOBALS];
+    u8 waiting;     /* WAIT_10MS/WAIT_MS set when a task starts a Wait/WaitMS, cleared once none waits */
+    u8 swan[RCX_SWAN_N(RCX_PROGRAMS)]; /* slot's code uses a Swan opcode or source 43/44 (decided when a download completes) */
+    s16 global[RCX_ALL_GLOBALS]; /* 0-31 RCX 2.0's globals, then task t's locals at 32 + 16 t (Swan's overlay) */
     struct rcx_task task[RCX_TASKS];
 
     /* Time. */
@@ -81,10 +90,15 @@ struct rcx {
     u16 watch_ms;   /* milliseconds into the current minute */
     u16 watch;      /* source 14: minutes since midnight */
     u16 random;     /* generator state, never 0 */
+    u16 ms_now;     /* free-running millisecond count: 1 ms timers and WaitMS */
+    u16 ms_base[RCX_SWAN_N(RCX_TIMERS)]; /* source 22 index i reads (ms_now - ms_base[i]) & 0x7FFF */
 
     /* Values delivered by the runtime, read by sources. */
     u16 battery_mv; /* source 34 */
     u8 message;     /* source 15 */
+    s16 msg_param;  /* source 15 index 1: Swan's message parameter */
+    s16 swan_power[RCX_SWAN_N(4)][RCX_MOTORS]; /* sources 5, 16, 32, 7 as last written (sources.c) */
+    s16 system[RCX_SWAN_N(RCX_SYSTEM)];  /* source 24 settings OpenRCX does not have: kept, no effect */
 
     struct rcx_sensor sensor[RCX_SENSORS];
     u8 sensors_rest;   /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */
@@ -137,7 +151,8 @@ void sched_select_program(struct rcx *b, u8 prog, u8 from_program);
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index);
 void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value);
 s16 source_poll(struct rcx *b, const u8 *cmd); /* direct Poll: 0x8000 for what does not exist */
-s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n); /* NULL when n is not a variable here */
+s16 *var_ref(struct rcx *b, const struct rcx_task *t, u16 n); /* NULL when n is not a variable here */
+#define rcx_local(b, n, k) ((b)->global[RCX_GLOBALS + RCX_LOCALS * (n) + (k)]) /* task n's variable 32 + k */
 
 /* Program memory (vm/progmem.c). */
 u16 mem_free(const struct rcx *b);
@@ -155,9 +170,29 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes
 
 /* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
+/* a op v for `kind`: the high nibble of SetVar..OrVar (1-9), or one of Swan's below */
+#define ARITH_SET (RCX_OP_SET_VAR >> 4)
+#define ARITH_COMP 10
+#define ARITH_MOD 11
+#define ARITH_XOR 12
+#define ARITH_SHL 13
+#define ARITH_SHR 14
+#define ARITH_NEG 15
+#define ARITH_BSET 16
+#define ARITH_BCLR 17
+#if RCX_SWAN
+s16 ops_arith(u8 kind, s16 a, s16 v); /* static (inlined) in a build without Swan's programs */
+#endif
+void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
+/* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */
+u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
+void swan_download_done(struct rcx *b);
+void swan_power(struct rcx *b, u8 src, u8 motor, s16 value); /* sources 5, 16, 32 written (sources.c) */ /* the last block came: the object's size, then its slot's kind */
+
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
 /* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
+void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value); /* into that source, if writable */
 
 #endif

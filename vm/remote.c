@@ -58,6 +58,8 @@ void remote_send_message(struct rcx *b, u8 message)
     b->remote.tx_len = 2;
     b->remote.tx_pack = 0x07; /* a standard packet, as any host sends it */
     b->remote.tx_mode = 0; /* always as F7: receivers never take a message for a repeat (reference-firmware.md) */
+    if (RCX_SWAN)
+        b->remote.follow = 0;
 }
 
 void remote_send_uart(struct rcx *b, u8 start, u8 size)
@@ -66,4 +68,44 @@ void remote_send_uart(struct rcx *b, u8 start, u8 size)
     b->remote.tx_len = size;
     b->remote.tx_pack = (u8)(b->uart[16] & 7u);
     b->remote.tx_mode = (u8)(b->uart[17] & 7u);
+    if (RCX_SWAN)
+        b->remote.follow = 0;
 }
+
+#if RCX_SWAN
+void remote_send_message_param(struct rcx *b, u8 message, s16 param)
+{
+    b->remote.tx[0] = RCX_SW_MSG_WORD;
+    b->remote.tx[1] = message;
+    b->remote.tx[2] = (u8)param;
+    b->remote.tx[3] = (u8)((u16)param >> 8);
+    b->remote.tx_len = 4;
+    b->remote.tx_pack = 0x07;
+    b->remote.tx_mode = 0;
+    b->remote.follow = (u8)(message + 1);
+}
+
+void remote_sent(struct rcx *b)
+{
+    u8 m = b->remote.follow;
+
+    if (m) {
+        b->remote.follow = 0;
+        remote_send_message(b, (u8)(m - 1));
+    }
+}
+
+void remote_param_received(struct rcx *b, const u8 *cmd)
+{
+    b->remote.rx_pmsg = (u8)(cmd[1] + 1);
+    b->remote.rx_param = (s16)RCX_LE16(cmd + 2);
+}
+
+s16 remote_message_received(struct rcx *b, u8 message)
+{
+    u8 m = b->remote.rx_pmsg;
+
+    b->remote.rx_pmsg = 0;
+    return m == (u8)(message + 1) ? b->remote.rx_param : 0; /* a plain message: parameter 0 */
+}
+#endif

@@ -5,6 +5,8 @@
  */
 #include "rcx.h"
 
+RCX_STATIC_ASSERT(locals_16, RCX_LOCALS == 1 << 4);
+
 void sched_start_task(struct rcx *b, u8 n)
 {
     struct rcx_task *t;
@@ -17,6 +19,12 @@ void sched_start_task(struct rcx *b, u8 n)
     t->pc = 0;
     t->has_ret = 0;
     t->loop_depth = 0;
+#if RCX_SWAN
+    t->stack = 0;
+#endif
+    /* Variables 32-47: the task's locals in an RCX 2.0 program, the globals themselves in a Swan one (source 0
+     * addresses globals there: swan-target.md 4). */
+    t->local_base = RCX_SWAN && b->swan[b->prog] ? 0 : (u8)(n << 4); /* 16 n */
     t->ev.events = 0;
     sched_set_state(b, t, RCX_TASK_RUNNING);
 }

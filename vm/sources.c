@@ -24,6 +24,8 @@ RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
 
 #define R LIMIT_EXISTS
 #define RW (LIMIT_EXISTS | LIMIT_WRITABLE)
+#define SW LIMIT_WRITABLE /* exists only for a Swan program's tasks (row(): swan) */
+#define VAR_MAX (RCX_SWAN ? RCX_ANY : 47) /* sources 0 and 36: 0-255 for Swan's programs (var_ref() decides) */
 #define STORE SHAPE_STORE
 #define RCX_MEMBER(m) (((struct rcx *)0)->m)
 #define COMPUTED 0, 0
@@ -38,19 +40,30 @@ static const struct source_row rows[RCX_SOURCE_COUNT] = {
 #undef RCX_SRC
 };
 
-/* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. */
+/* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
+ * program (ASK_SWAN) Swan's sources (SW) exist too. */
+#define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task */
 static const struct source_row *row(u8 src, u16 index, u8 need)
 {
     const struct source_row *r;
-    u8 max;
+    u8 max, limits;
     if (src >= RCX_SOURCE_COUNT)
         return NULL;
     r = &rows[src];
-    max = (u8)(r->limits & RCX_ANY);
-    if ((r->limits & need) != need || (max != RCX_ANY && index > max))
+    limits = r->limits;
+    if (RCX_SWAN && (need & ASK_SWAN)) {
+        need &= (u8)~ASK_SWAN;
+        if (limits & LIMIT_WRITABLE)
+            limits |= LIMIT_EXISTS;
+    }
+    max = (u8)(limits & RCX_ANY);
+    if ((limits & need) != need || (max != RCX_ANY && index > max))
         return NULL;
     return r;
 }
+
+/* The asker is a task of a Swan program (rcx.swan: decided when its download completed). */
+#define SWAN_TASK(b, t) (RCX_SWAN && (t) && (b)->swan[(b)->prog])
 
 /* The field of a plain source at an index already checked (<= 47). Both factors are byte variables so that gcc
  * multiplies with one mulxu instead of calling __mulhi3; inlined, it leaves source_get() a register to spare. */
@@ -62,13 +75,17 @@ static inline __attribute__((always_inline)) u8 *field(struct rcx *b, const stru
     return (u8 *)b + r->offset + (u16)((u8)index * stride);
 }
 
-s16 *var_ref(struct rcx *b, struct rcx_task *t, u16 n)
+/* 0-31 the globals; from a task 32-47 its locals (globals 32 + 16 t ... in an RCX 2.0 program, the globals themselves
+ * in a Swan one: t->local_base) and 48-255 the globals, in both (swan-target.md 4). */
+s16 *var_ref(struct rcx *b, const struct rcx_task *t, u16 n)
 {
-    if (n < RCX_GLOBALS)
-        return &b->global[n];
-    if (t && n < RCX_VARS)
-        return &t->local[n - RCX_GLOBALS]; /* 32-47 are the asking task's locals */
-    return NULL;
+    if (n >= RCX_GLOBALS) {
+        if (!t || n >= RCX_ALL_GLOBALS)
+            return NULL;
+        if (n < RCX_VARS)
+            n = (u16)(n + t->local_base);
+    }
+    return &b->global[n];
 }
 
 /* Next value of a 16-bit xorshift generator (period 65535; state never 0). */
@@ -82,17 +99,65 @@ static u16 next_random(struct rcx *b)
     return x;
 }
 
-/* The variable a VAR or INDIRECT source names (INDIRECT: the one whose number variable `index` holds); NULL when
- * there is none. The source comes in the high byte and the index (<= 47, checked) in the low one: with three
+/* The variable a VAR, INDIRECT, GLOBAL or GLOBAL_IND source names (the indirect ones: the one whose number variable
+ * `index` holds); NULL when there is none. 43/44 are Swan's globals: from any task, and a host, without the overlay.
+ * The source comes in the high byte and the index in the low one (the caller checks it is below 256): with three
  * arguments the H8/300 passes all of them in registers. */
-static s16 *var_of(struct rcx *b, struct rcx_task *t, u16 src_index)
+static s16 *var_of(struct rcx *b, const struct rcx_task *t, u16 src_index)
 {
-    s16 *v = var_ref(b, t, (u8)src_index);
+    u8 src = (u8)(src_index >> 8);
+    s16 *v;
 
-    if (v && (u8)(src_index >> 8) == RCX_SRC_INDIRECT)
+    if (RCX_SWAN && src >= RCX_SRC_GLOBAL)
+        t = b->task;                   /* any task: 48-255 are the globals; 32-47 of task 0 too (local_base 0) */
+    v = var_ref(b, t, (u8)src_index);
+    if (v && (src == RCX_SRC_INDIRECT || (RCX_SWAN && src == RCX_SRC_GLOBAL_IND)))
         v = var_ref(b, t, (u16)*v);
     return v;
 }
+#define IS_VARIABLE(src) ((src) == RCX_SRC_VAR || (src) == RCX_SRC_INDIRECT || (RCX_SWAN && (src) >= RCX_SRC_GLOBAL))
+RCX_STATIC_ASSERT(variable_sources, RCX_SRC_GLOBAL_IND == RCX_SRC_GLOBAL + 1 && RCX_SRC_GLOBAL_IND == 44);
+
+#if RCX_SWAN
+/* Datalog read-back (37-42, firm0332): the type or value of entry n, or byte n; entry 0 is the header (type 0xFF,
+ * entries used including it). The even sources take n itself, the odd ones (NQC's "Ind") from variable n. */
+static s16 log_read(struct rcx *b, const struct rcx_task *t, u8 src, u16 n)
+{
+    const u8 *log = b->arena + b->obj_start[RCX_OBJS];
+    u16 used = b->log_count;
+
+    if (src & 1) {
+        const s16 *v = var_ref(b, t, n);
+        n = v ? (u16)*v : 0xFFFFu;     /* no such variable: no such entry */
+    }
+    if (src >= RCX_SRC_LOG_BYTE_IND)
+        return n < (u16)(used * 3u) ? log[n] : 0;
+    if (n >= used)
+        return 0;
+    log += n * 3u;
+    return src <= RCX_SRC_LOG_TYPE ? log[0] : (s16)RCX_LE16(log + 1);
+}
+
+/* Swan's system settings (24) that OpenRCX has; -1 for the others, which keep what was written (SHAPE_STORE). */
+static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
+{
+    if (i == 0)
+        return (s16)b->battery_mv;
+    if (i == 3)
+        return t ? (s16)(t - b->task) : 0;
+    if (i == 13)
+        return b->tx_range;
+    if (i == 20)
+        return b->power_down_min;
+    if (i == 31)
+        return vm_sounding(b) ? 1 : 0;
+    if (i == 33)
+        return b->sound.count;
+    if (i == 38)
+        return b->log_size ? (s16)(b->log_size - 1) : 0;
+    return -1;
+}
+#endif
 
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
@@ -100,20 +165,42 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     const s16 *v;
     const u8 *p;
 
+    u8 swan;
+
     if (src == RCX_SRC_CONST)          /* by far the commonest sources: no table look-up */
         return (s16)index;
-    if (src == RCX_SRC_VAR && index < RCX_GLOBALS)
+    if ((src == RCX_SRC_VAR && index < RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_GLOBAL && index < RCX_ALL_GLOBALS))
         return b->global[index];
-    if ((r = row(src, index, LIMIT_EXISTS)) == NULL)
+    swan = SWAN_TASK(b, t);
+    if (swan && src == RCX_SRC_MESSAGE && index == 1)
+        return b->msg_param;
+    if ((r = row(src, index, (u8)(LIMIT_EXISTS | (swan ? ASK_SWAN : 0)))) == NULL)
         return 0;
+#if RCX_SWAN
+    if (src == RCX_SRC_SYSTEM) {
+        s16 live = system_live(b, t, (u8)index);
+        if (live >= 0)
+            return live;
+    }
+#endif
     if (r->shape & SHAPE_FIELD) {
         p = field(b, r, index);
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
     }
-    if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
-        v = var_of(b, (struct rcx_task *)t, (u16)(src << 8 | index));
+    if (IS_VARIABLE(src)) {
+        v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
         return v ? *v : 0;
     }
+#if RCX_SWAN
+    if (src >= RCX_SRC_LOG_TYPE_IND)
+        return log_read(b, t, src, index);
+    if (src == RCX_SRC_MS_TIMER)
+        return (s16)((u16)(b->ms_now - b->ms_base[index]) & 0x7FFF);
+    if (src == RCX_SRC_EVENT_SRC) {
+        u8 k = b->event[index].source;
+        return k ? (s16)(k - 1) : 16;  /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
+    }
+#endif
     if (src == RCX_SRC_MOTOR)
         return outputs_status(b, (u8)index);
     if (src == RCX_SRC_GLOBAL_MOTOR)
@@ -143,7 +230,9 @@ s16 source_poll(struct rcx *b, const u8 *cmd)
 {
     u8 src = cmd[1], index = cmd[2];
 
-    if (src == RCX_SRC_VAR ? index < RCX_GLOBALS : row(src, index, LIMIT_EXISTS) != NULL)
+    /* 0: 0-31; 36: 0-47 (32-47 read 0 from a host), as firm0328 answers (the rows allow more for a Swan task) */
+    if (src == RCX_SRC_VAR ? index < RCX_GLOBALS
+                           : (RCX_SWAN && src == RCX_SRC_INDIRECT) ? index < RCX_VARS : row(src, index, LIMIT_EXISTS) != NULL)
         return source_get(b, NULL, src, index);
     return (s16)-32768;
 }
@@ -158,14 +247,48 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     s16 *v;
     u8 *p;
 
-    if ((r = row(src, index, LIMIT_EXISTS | LIMIT_WRITABLE)) == NULL)
+    u8 swan = SWAN_TASK(b, t);
+
+    if (swan && src == RCX_SRC_MESSAGE && index == 1) {
+        b->msg_param = value;
+        return;
+    }
+    if ((r = row(src, index, (u8)(LIMIT_EXISTS | LIMIT_WRITABLE | (swan ? ASK_SWAN : 0)))) == NULL)
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
-    if (src == RCX_SRC_VAR || src == RCX_SRC_INDIRECT) {
-        if ((v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
+    if (IS_VARIABLE(src)) {
+        if ((!RCX_SWAN || index < RCX_ALL_GLOBALS) && (v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
             *v = value;
         return;
     }
+#if RCX_SWAN
+    if (src == RCX_SRC_MS_TIMER) {
+        if (value >= 0)
+            b->ms_base[index] = (u16)(b->ms_now - (u16)value);
+        return;
+    }
+    if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
+        const struct rcx_event *e = &b->event[index];
+        u8 k = e->source ? (u8)(e->source - 1) : 0;
+        if ((u16)value <= 0xFF)        /* events_set() checks the rest */
+            events_set(b, (u8)index, src == RCX_SRC_EVENT_SRC ? (u8)value : k,
+                       src == RCX_SRC_EVENT_TYPE ? (u8)value : e->type);
+        return;
+    }
+    if (src == RCX_SRC_SYSTEM && system_live(b, t, (u8)index) >= 0) {
+        /* those OpenRCX has: 13 IR range 0/1, 20 power-down minutes, 38 a new datalog; the others read only */
+        if (index == 13 ? (u16)value <= 1 : index == 20 ? (u16)value <= 0xFF : 0) {
+            b->tx_range = index == 13 ? (u8)value : b->tx_range;
+            if (index == 20) {
+                b->power_down_min = (u8)value;
+                b->idle_reset = 1;
+            }
+        }
+        if (index == 38 && value >= 0)
+            datalog_set(b, (u16)value);
+        return;
+    }
+#endif
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
@@ -208,6 +331,35 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         *p = (u8)value;
     if (src == RCX_SRC_MESSAGE)
         events_message_changed(b);
+#if RCX_SWAN
+    if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
+        swan_power(b, src, (u8)index, value);
+#endif
     if (src == RCX_SRC_COUNTER)
         events_counter_changed(b, (u8)index);
 }
+
+#if RCX_SWAN
+/*
+ * Swan's motor powers (5 signed, 16 0-127, 32 0-7; 7 brake power is only kept): each source keeps what was written
+ * through it (its field), and the output's RCX 2.0 power becomes the nearest of the 8 levels, level = (p x 7 + 63) /
+ * 127 on the 128 scale, a signed one's direction too (0 keeps it). Values beyond the scale give the end of it.
+ */
+void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
+{
+    u16 p = (u16)(value < 0 ? -value : value);
+    u16 change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, 7);
+
+    if (value < 0 && src != RCX_SRC_POWER_SIGNED)
+        return;
+    if (p > 127)
+        p = 127;                       /* the end of the scale; and p x 7 stays within 16 bits */
+    if (src != RCX_SRC_POWER8)
+        p = (u16)((p * 7u + 63u) / 127u);
+    if (p < 7)
+        change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, p);
+    if (src == RCX_SRC_POWER_SIGNED && value)
+        change |= OUTPUTS_CHANGE(RCX_MOTOR_FWD, value > 0 ? RCX_MOTOR_FWD : 0);
+    outputs_update(b, (u8)(1u << motor), change);
+}
+#endif

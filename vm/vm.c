@@ -22,11 +22,19 @@ static void wake_waiting(struct rcx *b)
     for (n = 0; n < RCX_TASKS; n++) {
         struct rcx_task *t = &b->task[n];
         if (t->state == RCX_TASK_WAITING) {
+#if RCX_SWAN
+            if ((s16)(u16)((t->wait_ms ? b->ms_now : b->ticks10) - t->wake) >= 0) {
+                sched_set_state(b, t, RCX_TASK_RUNNING);
+            } else {
+                still |= (u8)(t->wait_ms + 1); /* WAIT_MS or WAIT_10MS */
+            }
+#else
             if ((s16)(u16)(b->ticks10 - t->wake) >= 0) {
                 sched_set_state(b, t, RCX_TASK_RUNNING);
             } else {
                 still = 1;
             }
+#endif
         }
     }
     b->waiting = still;
@@ -47,6 +55,11 @@ void vm_tick(struct rcx *b)
         if (++b->watch >= 24 * 60)
             b->watch = 0;
     }
+#if RCX_SWAN
+    b->ms_now++;
+    if (b->waiting & WAIT_MS)
+        wake_waiting(b);
+#endif
     if (++b->ms < 10)
         return;
     b->ms = 0;

@@ -165,6 +165,10 @@ void hal_power_off(struct rcx *b)
  * is high byte first, as their temporary latch wants. The SCI is stopped before its mode changes; every register is
  * read before it is written, so that the flags it shows set are cleared by the 0 written.
  */
+#if RCX_SWAN
+#undef RCX_HIGH_DATA
+#define RCX_HIGH_DATA /* in .rodata: with Swan's programs F000-FB7F has no room for it */
+#endif
 static const u8 rom_state[] RCX_HIGH_DATA = {
     0xDA, 3, 0x00, 0xFF, 0x84,  /* SCI SCR, TDR, SSR */
     0xD8, 2, 0x00, 0xFF,        /* SCI SMR, BRR */

@@ -118,11 +118,6 @@ srcvar:	mov.b	r0h,r0h			; RF_SRC_VAR: a global variable's value
 	mov.w	@(RF_GLOBAL,r3),r3
 	bra	vref
 
-local:	add.w	r5,r0			; t + RF_LOCAL + 2 * (v - 32), less RF_GLOBAL
-	add.b	#(RF_LOCAL-2*RF_GLOBALS-RF_GLOBAL)&0xFF,r0l
-	addx	#((RF_LOCAL-2*RF_GLOBALS-RF_GLOBAL)>>8)&0xFF,r0h
-	bra	apply
-
 slow5:	subs	#2,r1			; back to the opcode
 	subs	#2,r1
 	subs	#1,r1
@@ -141,10 +136,12 @@ var:	add.b	#5,r1l			; v op= source: 5 bytes, and the code goes on after them
 	mov.b	@(-1,r1),r3h
 	cmp.b	#RF_SRC_CONST,r0h
 	bne	srcvar			; else the constant
-vref:	mov.b	#0,r0h
+vref:	cmp.b	#RF_GLOBALS,r0l
+	bcs	1f
+	mov.b	@(RF_LOCAL_BASE,r5),r0h	; 32-47: global v + t->local_base (at most 191)
+	add.b	r0h,r0l
+1:	mov.b	#0,r0h
 	add.w	r0,r0
-	cmp.b	#2*RF_GLOBALS,r0l
-	bcc	local
 	add.w	r6,r0			; the variable at @(RF_GLOBAL,r0)
 apply:	cmp.b	#RF_OP_SUM_VAR,r4l
 	beq	3f
@@ -161,17 +158,27 @@ apply:	cmp.b	#RF_OP_SUM_VAR,r4l
 	bra	done
 
 dispatch:
-	mov.b	@r1,r4l
-	and.b	#~RF_TOGGLE,r4l
+	mov.b	@r1,r4l			; all eight bits: 0x2C and 0x2F are Swan's, not SumVar and SJump
 	cmp.b	#RF_OP_SJUMP,r4l
 	beq	sjump
+#if RCX_SWAN
+	cmp.b	#RF_SW_SUM_GB,r4l	; Swan's x++ (sumgb g, 1) before RCX 2.0's: as fast as SumVar's
+	bne	1f
+	.word	0x5A00,k8add		; jmp @k8add
+1:
+#endif
 	cmp.b	#RF_OP_SUM_VAR,r4l
 	beq	var
 	cmp.b	#RF_OP_SET_VAR,r4l
 	beq	var
 	cmp.b	#RF_OP_SUB_VAR,r4l
 	beq	var
+#if RCX_SWAN
+	.word	0x5A00,swan		; jmp @swan: Swan's global forms, or slow
+#else
 	bra	slow			; any other
+#endif
+
 
 sjump:	mov.w	r1,r3
 	adds	#1,r3			; the distance's field
@@ -218,6 +225,7 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 	bne	over
 	.word	0x5A00,round0		; jmp @round0
 
+
 slow:	mov.w	@(F_CODE,r7),r0		; the task's pc where the byte code is
 	sub.w	r0,r1
 	mov.w	r1,@(RF_PC,r5)
@@ -260,3 +268,75 @@ over:	inc	r4l			; b->rr: the task after this one
 	mov.w	@r7+,r4
 	rts
 
+#if RCX_SWAN
+; Swan's assignments and sums on a global (0x2B 0x2C 0x2D, 0x48 0x49, 0xC8 0xC9: = += -= with a byte, a word high
+; byte first, or a constant or global source), as SetVar/SumVar/SubVar: r4l becomes that opcode for apply, r0 the
+; global's offset, r3 the value; r1 moves on only once the instruction is known to end before the code does.
+swan:	cmp.b	#RF_SW_SET_GB,r4l
+	beq	k8set
+	cmp.b	#RF_SW_SUB_GB,r4l
+	beq	k8sub
+	cmp.b	#RF_SW_SUM_G,r4l
+	beq	srcadd
+	cmp.b	#RF_SW_SET_G,r4l
+	beq	srcset
+	cmp.b	#RF_SW_SUB_G,r4l
+	beq	srcsub
+	cmp.b	#RF_SW_SET_GW,r4l
+	beq	word
+	bra	sslow			; any other
+k8set:	mov.b	#RF_OP_SET_VAR,r4l
+	bra	k8
+k8sub:	mov.b	#RF_OP_SUB_VAR,r4l
+	bra	k8
+k8add:	mov.b	#RF_OP_SUM_VAR,r4l
+k8:	mov.b	@(1,r1),r0l		; g
+	mov.w	r1,r3			; op g k8: 3 bytes, and one more byte code after them
+	adds	#2,r3
+	adds	#1,r3
+	cmp.w	r2,r3
+	bcc	sslow
+	mov.b	@(2,r1),r3l		; byte constants are unsigned
+	mov.b	#0,r3h
+	adds	#2,r1
+	adds	#1,r1
+	bra	gref
+sslow:	.word	0x5A00,slow		; jmp @slow, within reach of the branches around it
+word:	mov.b	#RF_OP_SET_VAR,r4l	; setgw g H L: 4 bytes
+	mov.b	@(1,r1),r0l
+	mov.w	r1,r3
+	adds	#2,r3
+	adds	#2,r3
+	cmp.w	r2,r3
+	bcc	sslow
+	mov.b	@(2,r1),r3h
+	mov.b	@(3,r1),r3l
+	bra	gnext
+srcset:	mov.b	#RF_OP_SET_VAR,r4l
+	bra	src
+srcsub:	mov.b	#RF_OP_SUB_VAR,r4l
+	bra	src
+srcadd:	mov.b	#RF_OP_SUM_VAR,r4l
+src:	mov.b	@(1,r1),r0l		; op g T v8: 4 bytes; T a constant or a global, else run_slow()
+	mov.w	r1,r3
+	adds	#2,r3
+	adds	#2,r3
+	cmp.w	r2,r3
+	bcc	sslow
+	mov.b	@(3,r1),r3l
+	mov.b	#0,r3h
+	mov.b	@(2,r1),r0h
+	cmp.b	#RF_SRC_CONST,r0h
+	beq	gnext
+	cmp.b	#RF_SRC_GLOBAL,r0h
+	bne	sslow
+	add.w	r3,r3
+	add.w	r6,r3
+	mov.w	@(RF_GLOBAL,r3),r3
+gnext:	adds	#2,r1
+	adds	#2,r1
+gref:	mov.b	#0,r0h			; the global at @(RF_GLOBAL,r0)
+	add.w	r0,r0
+	add.w	r6,r0
+	.word	0x5A00,apply		; jmp @apply
+#endif

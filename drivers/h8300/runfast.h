@@ -10,13 +10,20 @@
 #define RF_RR 0xC5         /* rr (u8) */
 #define RF_RUNMASK 0xC6    /* runmask (u16) */
 #define RF_YIELD 0xC8      /* yield (u8) */
-#define RF_GLOBAL 0xCA     /* global[] */
-#define RF_TASK 0x10A      /* task[] */
-#define RF_ARENA 0x5BA     /* arena[]; obj_start[] is at 0 */
-#define RF_TASK_SIZE 60    /* sizeof(struct rcx_task) */
+#if RCX_SWAN               /* an image with Swan's programs (RCX_IMAGE_SWAN=1, linker/h8300-hms.cmake) */
+#define RF_GLOBAL 0xD0     /* global[] */
+#define RF_TASK 0x2D0      /* task[] */
+#define RF_ARENA 0x6DE     /* arena[]; obj_start[] is at 0 */
+#define RF_TASK_SIZE 0x20  /* sizeof(struct rcx_task) */
+#else
+#define RF_GLOBAL 0xCC     /* global[] */
+#define RF_TASK 0x24C      /* task[] */
+#define RF_ARENA 0x5E2     /* arena[]; obj_start[] is at 0 */
+#define RF_TASK_SIZE 0x1E    /* sizeof(struct rcx_task) */
+#endif
 #define RF_SUB 1           /* struct rcx_task: sub (u8) */
 #define RF_PC 2            /* pc (u16) */
-#define RF_LOCAL 16        /* local[] */
+#define RF_LOCAL_BASE 16   /* local_base (u8) */
 
 #define RF_TASKS 10        /* RCX_TASKS */
 #define RF_SUBS 8          /* RCX_SUBS: a slot's objects are its subroutines, then its tasks */
@@ -31,5 +38,13 @@
 #define RF_OP_SJUMP 0x27
 #define RF_SRC_VAR 0
 #define RF_SRC_CONST 2
+#define RF_SRC_GLOBAL 43   /* Swan's global variable */
+#define RF_SW_SET_GB 0x2B  /* Swan's global op= forms the loop runs (RCX_SW_*) */
+#define RF_SW_SET_GW 0x2C
+#define RF_SW_SET_G 0x2D
+#define RF_SW_SUM_GB 0x48
+#define RF_SW_SUB_GB 0x49
+#define RF_SW_SUM_G 0xC8
+#define RF_SW_SUB_G 0xC9
 
 #endif

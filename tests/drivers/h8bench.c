@@ -122,9 +122,12 @@ struct whole { double idle_share, rate, ping_ms; };
  * host reads the samples back with Poll. Before the program, one second with nothing to do gives the share of the
  * CPU that the millisecond costs; while the tasks spin, a ping is timed from its last byte to the reply.
  */
-static int whole_image(const char *image, const char *nm, unsigned busy, struct whole *w)
+static int whole_image(const char *image, const char *nm, unsigned busy, int swan, struct whole *w)
 {
-    static const uint8_t busy_code[] = { 0x24, 0x00, 0x02, 0x01, 0x00, 0x27, 0x86 };
+    static const uint8_t rcx2_code[] = { 0x24, 0x00, 0x02, 0x01, 0x00, 0x27, 0x86 };
+    static const uint8_t swan_code[] = { 0x48, 0x00, 0x01, 0x27, 0x84 }; /* nqc -TSwan -L: sumgb gvar[0], 1; jmp 6 */
+    const uint8_t *busy_code = swan ? swan_code : rcx2_code;
+    unsigned busy_size = swan ? sizeof swan_code : sizeof rcx2_code;
     static const uint8_t tail[] = { 0x43, 0x02, 40, 0x00,                 /* Wait 400 ms: the pings */
                                     0x14, 0x01, 0x00, 0x00, 0x00,         /* var 1 = x */
                                     0x43, 0x02, 50, 0x00,                 /* Wait 500 ms */
@@ -158,7 +161,7 @@ static int whole_image(const char *image, const char *nm, unsigned busy, struct 
     for (i = 1; i <= busy; i++) {
         code[k++] = 0x71;
         code[k++] = (uint8_t)i;
-        if (h8m_download_task(m, (uint8_t)i, busy_code, sizeof busy_code))
+        if (h8m_download_task(m, (uint8_t)i, busy_code, busy_size))
             goto failed;
     }
     memcpy(code + k, tail, sizeof tail);
@@ -300,8 +303,10 @@ int main(int argc, char **argv)
         printf("    %-30s %-30s\n", a, b);
     }
     {
-        struct whole one, ten;
-        if (whole_image(argv[1], argv[2], 1, &one) || whole_image(argv[1], argv[2], 9, &ten))
+        struct whole one, ten, swan;
+        int has_swan = h8_sym("_swan_exec") >= 0; /* an image with Swan's programs (issue 16) */
+        if (whole_image(argv[1], argv[2], 1, 0, &one) || whole_image(argv[1], argv[2], 9, 0, &ten) ||
+            (has_swan && whole_image(argv[1], argv[2], 1, 1, &swan)))
             return 1;
         printf("the whole image in a simulated brick (main loop, interrupts, sleep, IR at 2400 Bd; h8machine.h),\n"
                "measured as on the emulated RCX: x++ tasks, a task samples x over 500 ms of the brick's clock:\n");
@@ -309,6 +314,11 @@ int main(int argc, char **argv)
                one.rate, one.rate / 2);
         printf("  9 busy tasks     %6.0f byte codes/s (%5.0f x++/s)  goal >= 30000; firm0328 3054 (1527)\n",
                ten.rate, ten.rate / 2);
+        if (has_swan)
+            printf("  Swan, 1 task     %6.0f byte codes/s (%5.0f x++/s)  nqc -TSwan: sumgb + jmp; goal: the RCX 2.0 "
+                   "x++/s above\n", swan.rate, swan.rate / 2);
+        else
+            printf("  Swan, 1 task     not in this image (RCX_SWAN 0; build/h8swan has them)\n");
         printf("  nothing to do    %6.1f %% of the CPU every millisecond  goal <= 8 %% (most of them skipped: "
                "rt_quiet)\n", 100 * one.idle_share);
         printf("  ping while busy  %.1f ms (1 task), %.1f ms (9 tasks) from its last byte to the reply; bound 30 ms\n",

@@ -76,16 +76,20 @@ static uint16_t img16(uint16_t a) { return (uint16_t)(h.mem[a] << 8 | h.mem[(uin
 static const struct { unsigned at, size, width; const char *name; } task_fields[] = {
     TASK_FIELD(state, 1),     TASK_FIELD(sub, 1),       TASK_FIELD(pc, 2),         TASK_FIELD(has_ret, 1),
     TASK_FIELD(ret_sub, 1),   TASK_FIELD(ret_pc, 2),    TASK_FIELD(wake, 2),       TASK_FIELD(priority, 1),
-    TASK_FIELD(loop_depth, 1), TASK_FIELD(loop, 1),     TASK_FIELD(local, 2),      TASK_FIELD(ev.events, 2),
+    TASK_FIELD(loop_depth, 1), TASK_FIELD(loop, 1),     TASK_FIELD(local_base, 1), TASK_FIELD(spare, 1),
+    TASK_FIELD(ev.events, 2),
     TASK_FIELD(ev.mon, 2),    TASK_FIELD(ev.ev_pc, 2),  TASK_FIELD(ev.ac_pc, 2),   TASK_FIELD(ev.ev_sub, 1),
     TASK_FIELD(ev.ac_sub, 1), TASK_FIELD(ev.rc, 1),     TASK_FIELD(ev.state, 1),
+#if RCX_SWAN
+    TASK_FIELD(stack, 1),     TASK_FIELD(wait_ms, 1),
+#endif
 };
 
 /* Variables, whole tasks and the scheduler's position: the same in both. */
 static void compare(const char *when)
 {
     unsigned i, f, k;
-    for (i = 0; i < RCX_GLOBALS; i++)
+    for (i = 0; i < RCX_ALL_GLOBALS; i++) /* RCX 2.0's globals and the tasks' locals (the image has no Swan) */
         if ((uint16_t)host.global[i] != img16((uint16_t)(brick + RF_GLOBAL + 2 * i)))
             fail_msg("%s: variable %u is %d on the host, %d in the image", when, i, host.global[i],
                      (int16_t)img16((uint16_t)(brick + RF_GLOBAL + 2 * i)));
@@ -108,6 +112,13 @@ static void compare(const char *when)
     }
     assert_int_equal(host.runmask, img16((uint16_t)(brick + RF_RUNMASK)));
     assert_int_equal(host.rr, h.mem[brick + RF_RR]);
+#if RCX_SWAN /* laid out as in the image up to rcx.port (u8 and u16 fields): offsetof serves for both */
+    assert_int_equal((uint16_t)host.msg_param, img16((uint16_t)(brick + offsetof(struct rcx, msg_param))));
+    assert_int_equal(host.message, h.mem[brick + offsetof(struct rcx, message)]);
+    assert_int_equal(host.ms_now, img16((uint16_t)(brick + offsetof(struct rcx, ms_now))));
+    assert_int_equal(host.timer[0], img16((uint16_t)(brick + offsetof(struct rcx, timer))));
+    assert_int_equal(host.swan[host.prog], h.mem[brick + offsetof(struct rcx, swan) + host.prog]);
+#endif
 }
 
 /* vm_run(budget) in both: the same count, then the same state. */
@@ -149,6 +160,21 @@ static unsigned random_code(uint8_t *p)
         p[1] = (uint8_t)(rnd(2) ? rnd(24) : 0x80 | rnd(rnd(4) ? 24 : 128));
         return 2;
     }
+#if RCX_SWAN
+    if (k < 16 + 4 && rnd(2)) { /* Swan's global forms the image's loop runs itself (runfast.S), and others */
+        static const uint8_t swan[] = { 0x2B, 0x48, 0x49, 0x4F, 0x2C, 0x2D, 0xC8, 0xC9, 0xCA, 0x58 };
+        static const uint8_t swan_srcs[] = { RCX_SRC_CONST, 43, 43, RCX_SRC_VAR, 44, 1 };
+        p[0] = swan[rnd(sizeof swan)];
+        p[1] = (uint8_t)(rnd(3) ? rnd(8) : rnd(256));
+        p[2] = (uint8_t)rnd(256);
+        p[3] = (uint8_t)rnd(256);
+        if (p[0] == 0x2D || p[0] >= 0xC8) {
+            p[2] = swan_srcs[rnd(sizeof swan_srcs)];
+            p[3] = (uint8_t)(rnd(3) ? rnd(8) : rnd(256));
+        }
+        return p[0] == 0x2B || (p[0] & 0xF0) == 0x40 ? 3 : 4;
+    }
+#endif
     if (k < 17) {
         p[0] = RCX_OP_GOSUB;
         p[1] = (uint8_t)rnd(3);
@@ -225,16 +251,85 @@ static void busy_tasks_take_turns(void **state)
     run(0xFFFF);
 }
 
+#if RCX_SWAN
+#include "rcx_image.h"
+static const char *program_dir;
+
+/* A code object of any size, in blocks of 200 bytes as nqc sends them. */
+static void download_long(uint8_t begin_op, uint8_t n, const uint8_t *code, unsigned size)
+{
+    uint8_t begin[6] = { begin_op, 0, n, 0, (uint8_t)size, (uint8_t)(size >> 8) }, block[210];
+    unsigned off = 0, seq = 1, i, chunk, sum;
+    assert_int_equal(both(begin, sizeof begin), 0);
+    do {
+        chunk = size - off > 200 ? 200 : size - off;
+        block[0] = 0x45;
+        block[1] = (uint8_t)(off + chunk >= size ? 0 : seq);
+        block[2] = 0;
+        block[3] = (uint8_t)chunk;
+        block[4] = 0;
+        for (i = sum = 0; i < chunk; i++)
+            sum += block[5 + i] = code[off + i];
+        block[5 + chunk] = (uint8_t)sum;
+        assert_int_equal(both(block, 6 + chunk), 0);
+        off += chunk;
+        seq++;
+    } while (off < size);
+}
+
+/* The Swan programs of tests/programs (nqc -TSwan) in both, started as nqc -run does, with milliseconds passing
+ * (WaitMS, MSTimer, the 10 ms waits) and budgets of every size: the same variables, tasks and Swan state. */
+static void swan_programs(void **state)
+{
+    static const char *const names[] = { "swan_globals", "swan_math", "swan_time", "swan_tasks" };
+    unsigned p, c, ms;
+    (void)state;
+    for (p = 0; p < sizeof names / sizeof names[0]; p++) {
+        char path[1024], err[160];
+        u8 *data;
+        size_t size;
+        struct rcx_image img;
+        uint8_t start[2] = { RCX_OP_START_TASK, 0 };
+        snprintf(path, sizeof path, "%s/%s.swan.rcx", program_dir, names[p]);
+        if (rcx_image_read_file(path, &data, &size, err, sizeof err) || rcx_image_parse(&img, data, size, err, sizeof err))
+            fail_msg("%s", err);
+        power_on();
+        seed = p * 31u + 7u;
+        for (c = 0; c < img.chunk_count; c++)
+            download_long(img.chunk[c].type == RCX_CHUNK_TASK ? 0x25 : 0x35, img.chunk[c].number, img.chunk[c].code,
+                          img.chunk[c].length);
+        both(start, 2);
+        compare("started");
+        for (ms = 0; ms < 1200; ms++) {
+            run((uint16_t)(rnd(8) ? 1 + rnd(12) : 1 + rnd(300)));
+            vm_tick(&host);
+            h8_run(&h, "_vm_tick", brick, 0, 0, NULL, 0);
+            if (ms % 50 == 0)
+                compare("a millisecond on");
+        }
+        compare("the end");
+        assert_int_equal(host.swan[0], 1);
+        free(data);
+    }
+}
+#endif
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(busy_tasks_take_turns),
         cmocka_unit_test(random_programs),
+#if RCX_SWAN
+        cmocka_unit_test(swan_programs),
+#endif
     };
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
+    if (argc != 3 + RCX_SWAN) {
+        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>%s\n", argv[0], RCX_SWAN ? " <Swan program images>" : "");
         return 2;
     }
+#if RCX_SWAN
+    program_dir = argv[3];
+#endif
     {
         unsigned f, covered = 0;
         for (f = 0; f < sizeof task_fields / sizeof task_fields[0]; f++)

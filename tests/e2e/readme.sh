@@ -1,7 +1,8 @@
 #!/bin/sh
 # The README's commands, as a newcomer copies them: every nqc command line in it that compiles a program names the
-# RCX 2.0 target (Debian's nqc compiles for the RCX 1.0 by default, where SetUserDisplay does not exist), and the
-# virtual RCX's example, run as written against rcxsim, downloads and starts an RCX 2.0 program.
+# RCX 2.0 target, or Swan's in its own section (Debian's nqc compiles for the RCX 1.0 by default, where SetUserDisplay
+# does not exist), and the virtual RCX's example, run as written against rcxsim, downloads and starts an RCX 2.0
+# program.
 . "$E2E_DIR/lib.sh"
 README="$E2E_DIR/../../README.md"
 # Command lines in backticks or code blocks that run nqc on a .nqc source.
@@ -9,7 +10,7 @@ grep -o -E '(`|^)nqc [^`]*\.nqc[^`]*' "$README" | tr -d '`' >"$WORK/compiles"
 [ -s "$WORK/compiles" ] || fail "no nqc command compiling a program in the README"
 while IFS= read -r line; do
     case " $line " in
-    *" -TRCX2 "*) ;;
+    *" -TRCX2 "* | *" -TSwan "*) ;; # Swan's programs (issue 16) name their target too
     *) fail "README: '$line' compiles for nqc's default target, the RCX 1.0: add -TRCX2" ;;
     esac
 done <"$WORK/compiles"

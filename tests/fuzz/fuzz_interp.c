@@ -3,7 +3,9 @@
  * bounded time with changing sensor input and events armed.
  *
  * Input: byte 0 = milliseconds to run (1-128), byte 1 = byte codes per millisecond (1-16), byte 2 = sensor seed,
- * then chunks: header (bit 7: subroutine, bits 0-3: number), length, code bytes.
+ * then chunks: header (bit 7: subroutine, bits 0-3: number), length, code bytes. Code is decoded on all eight bits,
+ * so Swan's opcodes (issue 16) are in reach; the corpus has Swan programs compiled by nqc -TSwan and one with every
+ * Swan opcode on sources 43-62.
  * Checked after each input: no crash (sanitizers), code of every other object byte-identical, the datalog intact
  * unless the code itself may have logged, the memory map consistent with the arena, task states consistent.
  */
@@ -19,8 +21,8 @@ static int may_touch_log(const u8 *code, unsigned len)
 {
     unsigned i;
     for (i = 0; i < len; i++)
-        if ((code[i] & 0xF7) == 0x52 || (code[i] & 0xF7) == 0x62)
-            return 1; /* SetDataLog or DataLogNext somewhere in the bytes */
+        if ((code[i] & 0xF7) == 0x52 || (code[i] & 0xF7) == 0x62 || code[i] == 0xC7 || code[i] == 24)
+            return 1; /* SetDataLog or DataLogNext; Swan's ClearAll or system setting 24 (38: a new datalog) */
     return 0;
 }
 

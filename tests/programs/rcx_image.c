@@ -84,7 +84,7 @@ static int parse_symbol(struct rcx_image *img, struct cursor *c, unsigned i, cha
     switch (s->type) {
     case RCX_SYMBOL_TASK: limit = RCX_TASKS; break;
     case RCX_SYMBOL_SUB:  limit = RCX_SUBS; break;
-    case RCX_SYMBOL_VAR:  limit = RCX_VARS; break;
+    case RCX_SYMBOL_VAR:  limit = img->target == RCX_IMAGE_TARGET_SWAN ? RCX_ALL_GLOBALS : RCX_VARS; break;
     default:
         return fail(err, errlen, "symbol %u: unknown type %u", i, s->type);
     }
@@ -126,8 +126,8 @@ int rcx_image_parse(struct rcx_image *img, const u8 *data, size_t size, char *er
     img->target = h[10];
     if (img->version != RCX_IMAGE_VERSION)
         return fail(err, errlen, "format version %04x, expected %04x", img->version, RCX_IMAGE_VERSION);
-    if (img->target != RCX_IMAGE_TARGET_RCX && img->target != RCX_IMAGE_TARGET_RCX2)
-        return fail(err, errlen, "target %u is not an RCX (0) or RCX2 (3)", img->target);
+    if (img->target != RCX_IMAGE_TARGET_RCX && img->target != RCX_IMAGE_TARGET_RCX2 && img->target != RCX_IMAGE_TARGET_SWAN)
+        return fail(err, errlen, "target %u is not an RCX (0), RCX2 (3) or Swan (5)", img->target);
     if (h[11] != 0)
         return fail(err, errlen, "header byte 11 is %u, expected 0", h[11]);
     if (img->chunk_count > RCX_IMAGE_MAX_CHUNKS)

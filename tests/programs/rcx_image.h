@@ -2,7 +2,7 @@
  * The .rcx files nqc writes (`nqc -O<file>`), read into memory and downloaded into a brick.
  *
  * Layout (host-tools.md §3), little-endian throughout:
- *   header   "RCXI", u16 version (0x0102), u16 chunk count, u16 symbol count, u8 target (0 RCX, 3 RCX2), u8 0
+ *   header   "RCXI", u16 version (0x0102), u16 chunk count, u16 symbol count, u8 target (0 RCX, 3 RCX2, 5 Swan), u8 0
  *   chunks   u8 type (0 task, 1 subroutine), u8 number, u16 code length, code padded with zeros to a multiple of 4
  *   symbols  u8 type (0 task, 1 subroutine, 2 variable), u8 index, u16 length, name of `length` bytes ending in 0
  *
@@ -21,6 +21,7 @@
 
 #define RCX_IMAGE_TARGET_RCX 0u   /* nqc's default target, RCX 1.0 firmware */
 #define RCX_IMAGE_TARGET_RCX2 3u  /* nqc -TRCX2 */
+#define RCX_IMAGE_TARGET_SWAN 5u  /* nqc -TSwan (issue 16) */
 
 #define RCX_CHUNK_TASK 0u
 #define RCX_CHUNK_SUB 1u

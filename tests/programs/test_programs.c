@@ -3,11 +3,11 @@
  * `nqc -d` does it, started the way `nqc -run` does it (71 00), run for a stretch of simulated time, and its
  * variables read back with the Poll command (12 00 n) as a host would.
  *
- * Usage: test_programs <program.nqc> <image dir> <RCX2|RCX>
+ * Usage: test_programs <program.nqc> <image dir> <RCX2|RCX|Swan>
  * The image is <image dir>/<name>.<rcx2|rcx>.rcx, built by CMake with nqc (tests/programs/CMakeLists.txt).
  *
  * What a program must do is written in its own comment header, one directive per line:
- *   // targets: RCX2 RCX          nqc targets to compile and test for (read by CMake)
+ *   // targets: RCX2 RCX Swan     nqc targets to compile and test for (read by CMake)
  *   // run: 2000                  simulated milliseconds after each start (default 1000)
  *   // starts: 2                  how many times task 0 is started, each followed by the run time (default 1)
  *   // end: idle | running        whether every task must have ended when the time is up (default idle)
@@ -16,7 +16,8 @@
  *                                 then goes into slot 0 (otherwise it is downloaded without selecting a slot)
  *   // expect: x=55 y=-3          expected values; expect(RCX2): ... applies to one target only
  * Values: name=V exact, name=V~T within T of V, name=LO..HI inclusive range. Names are resolved through the
- * image's symbol table (variables only); name[k] is element k of an array, var[n] is variable n itself.
+ * image's symbol table (variables only); name[k] is element k of an array, var[n] is variable n itself. RCX 2.0's
+ * globals are polled through source 0 (its locals cannot be), Swan's 256 through source 43 (swan-target.md 4).
  * Expectations are worked out from what the source means, never copied from a run.
  */
 #include <stdarg.h>
@@ -103,7 +104,7 @@ static int parse_expect(struct expect *e, const char *tok, size_t len)
     e->element = 0;
     if (*p == '[') {
         p++;
-        if (parse_long(&p, &v) || *p != ']' || v < 0 || v >= RCX_VARS)
+        if (parse_long(&p, &v) || *p != ']' || v < 0 || v >= RCX_ALL_GLOBALS)
             return -1;
         p++;
         e->element = (int)v;
@@ -268,7 +269,9 @@ struct loaded {
 static int open_image(struct loaded *l, const char *program)
 {
     char path[1024], err[160];
-    unsigned want = strcmp(args.target, "RCX2") == 0 ? RCX_IMAGE_TARGET_RCX2 : RCX_IMAGE_TARGET_RCX;
+    unsigned want = strcmp(args.target, "RCX2") == 0   ? RCX_IMAGE_TARGET_RCX2
+                    : strcmp(args.target, "Swan") == 0 ? RCX_IMAGE_TARGET_SWAN
+                                                       : RCX_IMAGE_TARGET_RCX;
 
     snprintf(path, sizeof path, "%s/%s.%s.rcx", args.image_dir, program, args.suffix);
     if (rcx_image_read_file(path, &l->data, &l->size, err, sizeof err)) {
@@ -303,6 +306,8 @@ static int download(struct rcx *b, struct loaded *l, const char *program, int sl
 static s16 poll_var(struct rcx *b, u8 n)
 {
     u8 cmd[3] = { 0x12, 0x00, 0 }, reply[RCX_REPLY_MAX];
+    if (strcmp(args.target, "Swan") == 0)
+        cmd[1] = 43;                   /* a Swan global */
     cmd[2] = n;
     assert_int_equal(brick_cmd(b, cmd, sizeof cmd, reply), 3);
     return (s16)(u16)(reply[1] | (reply[2] << 8));
@@ -363,7 +368,7 @@ static void run_program(void **state)
             }
             n += base;
         }
-        if (n >= RCX_GLOBALS) {
+        if (n >= (strcmp(args.target, "Swan") == 0 ? RCX_ALL_GLOBALS : RCX_GLOBALS)) {
             print_error("%s: '%s' is variable %d, a task local that cannot be polled\n", args.name, e->text, n);
             failed++;
             continue;
@@ -392,14 +397,14 @@ int main(int argc, char **argv)
     char group[128];
     size_t n;
 
-    if (argc != 4 || (strcmp(argv[3], "RCX2") != 0 && strcmp(argv[3], "RCX") != 0)) {
-        fprintf(stderr, "usage: %s <program.nqc> <image dir> <RCX2|RCX>\n", argv[0]);
+    if (argc != 4 || (strcmp(argv[3], "RCX2") != 0 && strcmp(argv[3], "RCX") != 0 && strcmp(argv[3], "Swan") != 0)) {
+        fprintf(stderr, "usage: %s <program.nqc> <image dir> <RCX2|RCX|Swan>\n", argv[0]);
         return 2;
     }
     args.source = argv[1];
     args.image_dir = argv[2];
     args.target = argv[3];
-    args.suffix = strcmp(argv[3], "RCX2") == 0 ? "rcx2" : "rcx";
+    args.suffix = strcmp(argv[3], "RCX2") == 0 ? "rcx2" : strcmp(argv[3], "Swan") == 0 ? "swan" : "rcx";
     base = strrchr(args.source, '/');
     base = base ? base + 1 : args.source;
     dot = strrchr(base, '.');

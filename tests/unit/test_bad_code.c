@@ -70,7 +70,7 @@ static struct rcx *bystanders(void)
         vm_tick(b); /* timers 12, 10 ms view 123, so that a stray write to any of them shows */
     brick_start(b, 1);
     vm_run(b, 10);
-    assert_int_equal(b->task[1].local[40 - 32], 1234);
+    assert_int_equal(rcx_local(b, 1, 40 - 32), 1234);
     return b;
 }
 
@@ -120,8 +120,8 @@ static void unknown_opcodes_skipped_by_length(void **state)
         u8 code[32];
         unsigned n = 0, k, p = nominal((u8)op);
         struct rcx *b;
-        if (known((u8)op))
-            continue;
+        if (known((u8)op) || rcx_swan_find((u8)op))
+            continue; /* Swan's opcodes are known since issue 16 (test_swan.c) */
         for (k = 0; k < 2; k++) {
             code[n++] = (u8)op;
             memcpy(code + n, params, p);
@@ -167,13 +167,14 @@ static void direct_only_opcodes_skipped(void **state)
     }
 }
 
-/* Bit 3 of an opcode byte is the toggle bit; XXXX NNN is the byte code (spec p. 5), in programs too. */
+/* Bit 3 of an opcode byte is the toggle bit; XXXX NNN is the byte code (spec p. 5), in programs too, except for
+ * the bytes that are Swan's opcodes (issue 16: 0x2C, 0x2F, 0xFE are no longer SumVar, SJump, EndOfSub there). */
 static void toggle_bit_in_program_code(void **state)
 {
-    static const u8 code[] = { 0x1C, MARK, CONST, 0x05, 0x00, 0x2C, MARK, CONST, 0x02, 0x00 };
-    /* control flow too: 2F = SJump +6 (over SetVar MARK = 99), 1F = Gosub 0, FE = EndOfSub outside a sub */
-    static const u8 flow[] = { 0x2F, 0x06, SETV(MARK, CONST, 99), 0x1F, 0x00, 0x2C, MARK, CONST, 0x02, 0x00,
-                               0xFE, INC(MARK) };
+    static const u8 code[] = { 0x1C, MARK, CONST, 0x05, 0x00, 0x3C, MARK, CONST, 0xFE, 0xFF };
+    /* control flow too: 7A = LJump +7 (over SetVar MARK = 99), 1F = Gosub 0, F6 ends the task outside a sub */
+    static const u8 flow[] = { 0x7A, 0x07, 0x00, SETV(MARK, CONST, 99), 0x1F, 0x00, 0x3C, MARK, CONST, 0xFE, 0xFF,
+                               0xF6, INC(MARK) };
     struct rcx *b = run_isolated(code, sizeof code, 100);
     (void)state;
     assert_int_equal(b->global[MARK], 7);
@@ -342,8 +343,8 @@ static void deep_gosub_misuse(void **state)
     brick_free(b);
 }
 
-/* All 0xFF: by spec p. 5 that is InternMessage (0xF7, toggle bit set) with operand 0xFF, repeated; an odd
- * length leaves a truncated last instruction. */
+/* All 0xFF: by spec p. 5 that was InternMessage (0xF7, toggle bit set); since issue 16 it is Swan's modp on source
+ * 0xFF, which does not exist: nothing happens, and the 100 or 101 bytes end in a truncated instruction. */
 static void task_of_ff_bytes(void **state)
 {
     static u8 ff[101];
@@ -358,7 +359,7 @@ static void task_of_ff_bytes(void **state)
         brick_start(b, 0);
         vm_run(b, 1000);
         assert_int_equal(b->task[0].state, RCX_TASK_IDLE);
-        assert_int_equal(b->message, 0xFF);
+        assert_int_equal(b->message, 0);
         assert_memory_equal(before.global, b->global, sizeof before.global);
         assert_memory_equal(before.arena, b->arena, before.obj_start[RCX_OBJS]);
         assert_memory_equal(&before.task[1], &b->task[1], sizeof before.task[1]);

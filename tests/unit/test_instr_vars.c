@@ -278,14 +278,11 @@ static void random_seed_repeats_sequence(void **state)
 /* ------------------------------------------------------------------------------------------------------------ */
 /* Variable numbers. */
 
-struct snapshot { s16 global[RCX_GLOBALS]; s16 local[RCX_TASKS][RCX_LOCALS]; u8 arena[RCX_ARENA_SIZE]; };
+struct snapshot { s16 global[RCX_ALL_GLOBALS]; u8 arena[RCX_ARENA_SIZE]; };
 
 static void take(const struct rcx *b, struct snapshot *s)
 {
-    unsigned n;
     memcpy(s->global, b->global, sizeof s->global);
-    for (n = 0; n < RCX_TASKS; n++)
-        memcpy(s->local[n], b->task[n].local, sizeof s->local[n]);
     memcpy(s->arena, b->arena, sizeof s->arena);
 }
 
@@ -300,7 +297,7 @@ static void direct_writes_to_locals_are_ignored(void **state)
     load(b, 1, 0, loop, sizeof loop);
     brick_start(b, 0);
     brick_run_ms(b, 5, 10);
-    assert_int_equal(b->task[0].local[40 - 32], 5);
+    assert_int_equal(rcx_local(b, 0, 40 - 32), 5);
     take(b, &before);
     for (v = 32; v < 48; v++)
         for (i = 0; i < 9; i++)
@@ -325,9 +322,9 @@ static void locals_are_per_task(void **state)
     assert_int_equal(b->global[0], 112);
     assert_int_equal(b->global[1], 444);
     assert_int_equal(b->global[3], -9);
-    assert_int_equal(b->task[0].local[40 - 32], 112);
-    assert_int_equal(b->task[1].local[40 - 32], 444);
-    assert_int_equal(b->task[1].local[47 - 32], -9);
+    assert_int_equal(rcx_local(b, 0, 40 - 32), 112);
+    assert_int_equal(rcx_local(b, 1, 40 - 32), 444);
+    assert_int_equal(rcx_local(b, 1, 47 - 32), -9);
     brick_free(b);
 }
 
@@ -365,7 +362,9 @@ static void variables_48_and_up_touch_nothing(void **state)
     brick_free(b);
 }
 
-static void variables_48_and_up_ignored_in_programs(void **state)
+/* Variables 48-255 of a program are the globals of those numbers, in an RCX 2.0 program too (swan-target.md 4,
+ * issue 16; before it they were ignored). */
+static void variables_48_to_255_are_globals_in_programs(void **state)
 {
     static const u8 code[] = { SETV(48, CONST, 99), SUMV(49, CONST, 1), OPV(OR, 63, CONST, -1),
                                OPV(ABS, 128, CONST, -3), SETV(255, CONST, 7), SETV(0, CONST, 1) };
@@ -377,7 +376,12 @@ static void variables_48_and_up_ignored_in_programs(void **state)
     run_task0(b);
     take(b, &after);
     assert_int_equal(b->global[0], 1); /* the last instruction still ran */
-    after.global[0] = 0;
+    assert_int_equal(b->global[48], 99);
+    assert_int_equal(b->global[49], 1);
+    assert_int_equal(b->global[63], -1);
+    assert_int_equal(b->global[128], 3);
+    assert_int_equal(b->global[255], 7);
+    after.global[0] = after.global[48] = after.global[49] = after.global[63] = after.global[128] = after.global[255] = 0;
     assert_memory_equal(&before, &after, sizeof before);
     brick_free(b);
 }
@@ -397,7 +401,7 @@ int main(void)
         cmocka_unit_test(locals_are_per_task),
         cmocka_unit_test(subroutine_sees_callers_locals),
         cmocka_unit_test(variables_48_and_up_touch_nothing),
-        cmocka_unit_test(variables_48_and_up_ignored_in_programs),
+        cmocka_unit_test(variables_48_to_255_are_globals_in_programs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

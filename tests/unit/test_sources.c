@@ -192,7 +192,8 @@ static void undefined_sources(void **state)
         wr(b, holes[i], 0, 1234);
         wr(b, holes[i], 1, -1);
     }
-    for (src = 37; src < 64; src++) {
+    /* 37-42 are firm0332's datalog read-back and 43/44 Swan's globals (issue 16, swan-target.md 3): they exist. */
+    for (src = 45; src < 64; src++) {
         assert_int_equal((u16)poll(b, (u8)src, 0), 0x8000);
         wr(b, (u8)src, 0, 1234);
     }
