@@ -28,11 +28,9 @@ set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 
 # -Os measured smaller than -O2 for this code; no -mh/-ms (the RCX has the plain H8/300). RCX_SWAN=0: Swan's programs
 # (issue 16) are not in the image until they fit its budget (include/rcx_limits.h).
-if(NOT DEFINED RCX_IMAGE_SWAN)
-    set(RCX_IMAGE_SWAN 0)  # -DRCX_IMAGE_SWAN=1: an image with them, to measure it
-endif()
-set(CMAKE_C_FLAGS_INIT "-Os -fomit-frame-pointer -std=gnu99 -ffreestanding -Wall -Werror -DRCX_SWAN=${RCX_IMAGE_SWAN}")
-set(CMAKE_ASM_FLAGS_INIT "-DRCX_SWAN=${RCX_IMAGE_SWAN}")
+# The define is set in CMakeLists.txt from the cached RCX_IMAGE_SWAN, not here: flags given here reach only a new
+# build folder's cache, and an older folder would build the image with Swan's default (1) without a word.
+set(CMAKE_C_FLAGS_INIT "-Os -fomit-frame-pointer -std=gnu99 -ffreestanding -Wall -Werror")
 # Build types must not replace -Os (the image has to fit): they only add or drop debug information.
 foreach(config DEBUG RELEASE RELWITHDEBINFO MINSIZEREL)
     set(CMAKE_C_FLAGS_${config}_INIT "")
