@@ -193,16 +193,10 @@ static void hub_poll(struct room_link *l)
 static int hub_fds(struct room_link *l, struct pollfd *fds, int max)
 {
     struct hub *h = (struct hub *)l;
-    int i, n = 0;
-    if (max > 0) {
-        fds[n].fd = h->fd;
-        fds[n++].events = POLLIN;
-    }
-    for (i = 0; i < NET_MAX_CLIENTS && n < max; i++)
-        if (h->client[i] && h->client[i]->fd >= 0) {
-            fds[n].fd = h->client[i]->fd;
-            fds[n++].events = POLLIN;
-        }
+    int i, n = room_fd(fds, max, h->fd);
+    for (i = 0; i < NET_MAX_CLIENTS; i++)
+        if (h->client[i])
+            n += room_fd(fds + n, max - n, h->client[i]->fd);
     return n;
 }
 
@@ -327,12 +321,7 @@ static void join_poll(struct room_link *l)
 
 static int join_fds(struct room_link *l, struct pollfd *fds, int max)
 {
-    struct join *j = (struct join *)l;
-    if (max < 1 || j->fd < 0)
-        return 0;
-    fds[0].fd = j->fd;
-    fds[0].events = POLLIN;
-    return 1;
+    return room_fd(fds, max, ((struct join *)l)->fd);
 }
 
 static void join_close(struct room_link *l)

@@ -136,6 +136,15 @@ int room_fds(struct room *r, struct pollfd *fds, int max)
     return n;
 }
 
+int room_fd(struct pollfd *fds, int max, int fd)
+{
+    if (max < 1 || fd < 0)
+        return 0;
+    fds->fd = fd;
+    fds->events = POLLIN;
+    return 1;
+}
+
 void room_close(struct room *r)
 {
     while (r->links) {

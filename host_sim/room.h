@@ -58,6 +58,8 @@ void room_advance(struct room *r, sim_us until); /* delivers every byte whose la
 void room_attach(struct room *r, struct room_link *l);
 void room_poll(struct room *r);
 int room_fds(struct room *r, struct pollfd *fds, int max);
+/* For a link's fds(): waiting on `fd` for input, if there is room (max > 0) and it is open (>= 0); how many: 1 or 0. */
+int room_fd(struct pollfd *fds, int max, int fd);
 void room_close(struct room *r);              /* closes every link */
 
 #endif

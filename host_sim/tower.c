@@ -60,12 +60,7 @@ static void tower_poll(struct room_link *l)
 
 static int tower_fds(struct room_link *l, struct pollfd *fds, int max)
 {
-    struct tower *t = (struct tower *)l;
-    if (max < 1)
-        return 0;
-    fds[0].fd = t->master;
-    fds[0].events = POLLIN;
-    return 1;
+    return room_fd(fds, max, ((struct tower *)l)->master);
 }
 
 static void tower_close(struct room_link *l)

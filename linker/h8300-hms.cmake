@@ -26,10 +26,9 @@ set(RCX_H8_SIZE "${RCX_H8_BIN}/${RCX_H8_PREFIX}size" CACHE FILEPATH "" FORCE)
 # No C library and a libgcc that does not link: the compiler checks may compile but not link.
 set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 
-# -Os measured smaller than -O2 for this code; no -mh/-ms (the RCX has the plain H8/300). RCX_SWAN=0: Swan's programs
-# (issue 16) are not in the image until they fit its budget (include/rcx_limits.h).
-# The define is set in CMakeLists.txt from the cached RCX_IMAGE_SWAN, not here: flags given here reach only a new
-# build folder's cache, and an older folder would build the image with Swan's default (1) without a word.
+# -Os measured smaller than -O2 for this code; no -mh/-ms (the RCX has the plain H8/300). RCX_SWAN (Swan's programs,
+# issue 16) is defined in CMakeLists.txt from the cached option RCX_IMAGE_SWAN, not here: flags given here reach only
+# a new build folder's cache, and an older folder would build the image with rcx_limits.h's default (1) unnoticed.
 set(CMAKE_C_FLAGS_INIT "-Os -fomit-frame-pointer -std=gnu99 -ffreestanding -Wall -Werror")
 # Build types must not replace -Os (the image has to fit): they only add or drop debug information.
 foreach(config DEBUG RELEASE RELWITHDEBINFO MINSIZEREL)

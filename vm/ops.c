@@ -29,8 +29,6 @@ s16 ops_arith(u8 kind, s16 a, s16 v)
     case RCX_OP_AND_VAR >> 4: return (s16)(a & v);
 #if RCX_SWAN
     case RCX_OP_OR_VAR >> 4:  return (s16)(a | v);
-#endif
-#if RCX_SWAN
     /* Swan's (swan-target.md 4) */
     case ARITH_COMP:          return (s16)~v;
     case ARITH_MOD:

@@ -179,7 +179,6 @@ dispatch:
 	bra	slow			; any other
 #endif
 
-
 sjump:	mov.w	r1,r3
 	adds	#1,r3			; the distance's field
 	cmp.w	r2,r3
@@ -224,7 +223,6 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 2:	mov.b	@(RF_YIELD,r6),r0l
 	bne	over
 	.word	0x5A00,round0		; jmp @round0
-
 
 slow:	mov.w	@(F_CODE,r7),r0		; the task's pc where the byte code is
 	sub.w	r0,r1

@@ -10,7 +10,7 @@
 #define RF_RR 0xC5         /* rr (u8) */
 #define RF_RUNMASK 0xC6    /* runmask (u16) */
 #define RF_YIELD 0xC8      /* yield (u8) */
-#if RCX_SWAN               /* an image with Swan's programs (RCX_IMAGE_SWAN=1, linker/h8300-hms.cmake) */
+#if RCX_SWAN               /* an image with Swan's programs (the CMake option RCX_IMAGE_SWAN, CMakeLists.txt) */
 #define RF_GLOBAL 0xD0     /* global[] */
 #define RF_TASK 0x2D0      /* task[] */
 #define RF_ARENA 0x6DE     /* arena[]; obj_start[] is at 0 */
@@ -19,7 +19,7 @@
 #define RF_GLOBAL 0xCC     /* global[] */
 #define RF_TASK 0x24C      /* task[] */
 #define RF_ARENA 0x5E2     /* arena[]; obj_start[] is at 0 */
-#define RF_TASK_SIZE 0x1E    /* sizeof(struct rcx_task) */
+#define RF_TASK_SIZE 0x1E  /* sizeof(struct rcx_task) */
 #endif
 #define RF_SUB 1           /* struct rcx_task: sub (u8) */
 #define RF_PC 2            /* pc (u16) */

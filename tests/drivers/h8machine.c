@@ -181,7 +181,6 @@ static void ad_convert(struct h8machine *m, unsigned long long from) /* m->ad_ch
     m->ad_spl_from = from;
     m->ad_spl_at = from + (fast ? 31 : 63);
     m->ad_at = m->ad_spl_at + (fast ? 94 : 186);
-    m->ad_new = 1;
 }
 
 /* The sampling ends: the level is held. A sensor input's is full scale if its power was on at any time since the
@@ -538,9 +537,8 @@ int h8m_run(struct h8machine *m, unsigned long long until)
         m->inhibit = op >= 0x03 && op <= 0x07;
         if (h8_step_traced(h))
             return -1;
-        if (m->resched || m->ad_new) { /* a timer set up, a conversion or a transmission started: not only at the
-                                        * next event known */
-            m->resched = m->ad_new = 0;
+        if (m->resched) { /* a timer set up, a conversion or a transmission started: not only at the next event */
+            m->resched = 0;
             next = next_event(m);
         }
         if (h->asleep && (h->mem[SYSCR] & SSBY)) {

@@ -52,7 +52,6 @@ struct h8machine {
     unsigned long long ad_spl_from, ad_spl_at; /* its input sampling; ad_spl_at 0 once taken */
     uint8_t ad_ch;                          /* its channel */
     uint8_t ad_read;                        /* ADF read as 1: writing 0 to it clears it */
-    int ad_new;                             /* a conversion was started: the next event may be sooner */
     uint16_t ad_held;                       /* the level it sampled (raw10) */
     uint16_t ad_raw[4];                     /* raw10 of AN0-AN3 (inputs 3, 2, 1, battery) */
     int ad_broken;                          /* if set, a conversion started never ends: a fault no converter has,
@@ -88,7 +87,8 @@ struct h8machine {
     unsigned long long tone_at;             /* ... and when */
     uint8_t latch;                          /* the motor latch as last written ... */
     unsigned long long latch_at;            /* ... and when it last changed */
-    int resched;                            /* a register was written: the next event may have moved */
+    int resched;                            /* a register was written: the next event may have moved (a conversion
+                                             * the converter starts itself comes at an event, which re-plans anyway) */
     uint8_t sleep_io[128];                  /* FF80-FFFF as the SLEEP that entered the last standby found them */
     uint8_t lcd[H8M_LCD];                   /* the last complete frame on the LCD bus (START to STOP) */
     unsigned lcd_len, lcd_frames;
