@@ -186,8 +186,7 @@ s16 ops_arith(u8 kind, s16 a, s16 v); /* static (inlined) in a build without Swa
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
 /* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */
 u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
-void swan_download_done(struct rcx *b);
-void swan_power(struct rcx *b, u8 src, u8 motor, s16 value); /* sources 5, 16, 32 written (sources.c) */ /* the last block came: the object's size, then its slot's kind */
+void swan_download_done(struct rcx *b); /* the last block came: the object's size, then its slot's kind */
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
 /* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */

@@ -40,6 +40,14 @@ static const struct source_row rows[RCX_SOURCE_COUNT] = {
 #undef RCX_SRC
 };
 
+#if RCX_SWAN
+/* Swan's message parameter, source 15 index 1: a word beside the message, a row of its own (stride 0: index 1 is the
+ * field itself). */
+static const struct source_row msg_param_row = {
+    (u16)offsetof(struct rcx, msg_param), SHAPE_WORD | SHAPE_STORE | SHAPE_FIELD, 1 | SW
+};
+#endif
+
 /* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
  * program (ASK_SWAN) Swan's sources (SW) exist too. */
 #define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task */
@@ -50,6 +58,10 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
     if (src >= RCX_SOURCE_COUNT)
         return NULL;
     r = &rows[src];
+#if RCX_SWAN
+    if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
+        r = &msg_param_row;
+#endif
     limits = r->limits;
     if (RCX_SWAN && (need & ASK_SWAN)) {
         need &= (u8)~ASK_SWAN;
@@ -116,12 +128,13 @@ static s16 *var_of(struct rcx *b, const struct rcx_task *t, u16 src_index)
     return v;
 }
 #define IS_VARIABLE(src) ((src) == RCX_SRC_VAR || (src) == RCX_SRC_INDIRECT || (RCX_SWAN && (src) >= RCX_SRC_GLOBAL))
+RCX_STATIC_ASSERT(event_fields, offsetof(struct rcx_event, source) == 0 && offsetof(struct rcx_event, type) == 1);
 RCX_STATIC_ASSERT(variable_sources, RCX_SRC_GLOBAL_IND == RCX_SRC_GLOBAL + 1 && RCX_SRC_GLOBAL_IND == 44);
 
 #if RCX_SWAN
 /* Datalog read-back (37-42, firm0332): the type or value of entry n, or byte n; entry 0 is the header (type 0xFF,
  * entries used including it). The even sources take n itself, the odd ones (NQC's "Ind") from variable n. */
-static s16 log_read(struct rcx *b, const struct rcx_task *t, u8 src, u16 n)
+static __attribute__((noinline)) s16 log_read(struct rcx *b, const struct rcx_task *t, u8 src, u16 n)
 {
     const u8 *log = b->arena + b->obj_start[RCX_OBJS];
     u16 used = b->log_count;
@@ -130,12 +143,16 @@ static s16 log_read(struct rcx *b, const struct rcx_task *t, u8 src, u16 n)
         const s16 *v = var_ref(b, t, n);
         n = v ? (u16)*v : 0xFFFFu;     /* no such variable: no such entry */
     }
-    if (src >= RCX_SRC_LOG_BYTE_IND)
-        return n < (u16)(used * 3u) ? log[n] : 0;
-    if (n >= used)
+    if (src < RCX_SRC_LOG_BYTE_IND) {  /* entry n: from here on its first byte */
+        if (n >= used)
+            return 0;
+        n = (u16)(n * 3u);
+        if (src >= RCX_SRC_LOG_VALUE_IND)
+            return (s16)RCX_LE16(log + n + 1);
+    } else if (n >= (u16)(used * 3u)) {
         return 0;
-    log += n * 3u;
-    return src <= RCX_SRC_LOG_TYPE ? log[0] : (s16)RCX_LE16(log + 1);
+    }
+    return log[n];
 }
 
 /* Swan's system settings (24) that OpenRCX has; -1 for the others, which keep what was written (SHAPE_STORE). */
@@ -159,22 +176,47 @@ static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
 }
 #endif
 
+#if RCX_SWAN
+/*
+ * Swan's motor powers (5 signed, 16 0-127, 32 0-7; 7 brake power is only kept): each source keeps what was written
+ * through it (its field), and the output's RCX 2.0 power becomes the nearest of the 8 levels, level = (p x 7 + 63) /
+ * 127 on the 128 scale, a signed one's direction too (0 keeps it). Values beyond the scale give the end of it.
+ */
+static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
+{
+    u8 p = 127;                        /* the end of the scale */
+    u16 change;
+
+    if (value < 0) {
+        if (src != RCX_SRC_POWER_SIGNED)
+            return;
+        if (value > -127)
+            p = (u8)-value;
+    } else if (value < 127) {
+        p = (u8)value;
+    }
+    if (src != RCX_SRC_POWER8)
+        p = (u8)((u16)(p * 57u + 454u) >> 10); /* = (p x 7 + 63) / 127 for every p 0-127: no division helper */
+    else if (p > 7)
+        p = 7;
+    change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, p);
+    if (src == RCX_SRC_POWER_SIGNED && value)
+        change |= OUTPUTS_CHANGE(RCX_MOTOR_FWD, value > 0 ? RCX_MOTOR_FWD : 0);
+    outputs_update(b, (u8)(1u << motor), change);
+}
+#endif
+
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const struct source_row *r;
     const s16 *v;
     const u8 *p;
 
-    u8 swan;
-
     if (src == RCX_SRC_CONST)          /* by far the commonest sources: no table look-up */
         return (s16)index;
     if ((src == RCX_SRC_VAR && index < RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_GLOBAL && index < RCX_ALL_GLOBALS))
         return b->global[index];
-    swan = SWAN_TASK(b, t);
-    if (swan && src == RCX_SRC_MESSAGE && index == 1)
-        return b->msg_param;
-    if ((r = row(src, index, (u8)(LIMIT_EXISTS | (swan ? ASK_SWAN : 0)))) == NULL)
+    if ((r = row(src, index, (u8)(LIMIT_EXISTS | (SWAN_TASK(b, t) ? ASK_SWAN : 0)))) == NULL)
         return 0;
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM) {
@@ -183,10 +225,9 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
             return live;
     }
 #endif
-    if (r->shape & SHAPE_FIELD) {
-        p = field(b, r, index);
+    p = field(b, r, index);            /* (a computed source's row may name a field too) */
+    if (r->shape & SHAPE_FIELD)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
-    }
     if (IS_VARIABLE(src)) {
         v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
         return v ? *v : 0;
@@ -194,12 +235,10 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 #if RCX_SWAN
     if (src >= RCX_SRC_LOG_TYPE_IND)
         return log_read(b, t, src, index);
-    if (src == RCX_SRC_MS_TIMER)
-        return (s16)((u16)(b->ms_now - b->ms_base[index]) & 0x7FFF);
-    if (src == RCX_SRC_EVENT_SRC) {
-        u8 k = b->event[index].source;
-        return k ? (s16)(k - 1) : 16;  /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
-    }
+    if (src == RCX_SRC_MS_TIMER)       /* the field is the base */
+        return (s16)((u16)(b->ms_now - *(const u16 *)(const void *)p) & 0x7FFF);
+    if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
+        return *p ? (s16)(*p - 1) : 16;
 #endif
     if (src == RCX_SRC_MOTOR)
         return outputs_status(b, (u8)index);
@@ -220,7 +259,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     }
     if (src == RCX_SRC_TIMER10)
         /* 10 x the 100 ms count plus the 10 ms steps into the current 100 ms tick (reference-firmware.md). */
-        return (s16)((u16)(b->timer[index] * 10u + b->step10) & 0x7FFF);
+        return (s16)((u16)(*(const u16 *)(const void *)p * 10u + b->step10) & 0x7FFF);
     return RCX_FIRMWARE_VERSION;       /* the last source without a field */
 }
 
@@ -247,13 +286,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     s16 *v;
     u8 *p;
 
-    u8 swan = SWAN_TASK(b, t);
-
-    if (swan && src == RCX_SRC_MESSAGE && index == 1) {
-        b->msg_param = value;
-        return;
-    }
-    if ((r = row(src, index, (u8)(LIMIT_EXISTS | LIMIT_WRITABLE | (swan ? ASK_SWAN : 0)))) == NULL)
+    if ((r = row(src, index, (u8)(LIMIT_EXISTS | LIMIT_WRITABLE | (SWAN_TASK(b, t) ? ASK_SWAN : 0)))) == NULL)
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
     if (IS_VARIABLE(src)) {
@@ -262,30 +295,33 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         return;
     }
 #if RCX_SWAN
-    if (src == RCX_SRC_MS_TIMER) {
-        if (value >= 0)
-            b->ms_base[index] = (u16)(b->ms_now - (u16)value);
-        return;
-    }
     if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
-        const struct rcx_event *e = &b->event[index];
-        u8 k = e->source ? (u8)(e->source - 1) : 0;
-        if ((u16)value <= 0xFF)        /* events_set() checks the rest */
-            events_set(b, (u8)index, src == RCX_SRC_EVENT_SRC ? (u8)value : k,
-                       src == RCX_SRC_EVENT_TYPE ? (u8)value : e->type);
+        /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
+        u8 i = (u8)index, size = sizeof(struct rcx_event); /* two byte variables: one mulxu */
+        const struct rcx_event *e = (const struct rcx_event *)(const void *)((const u8 *)b->event + (u16)(i * size));
+        u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
+        if ((u16)value > 0xFF)         /* events_set() checks the rest */
+            return;
+        if (src == RCX_SRC_EVENT_SRC)
+            k = (u8)value;
+        else
+            type = (u8)value;
+        events_set(b, (u8)index, k, type);
         return;
     }
     if (src == RCX_SRC_SYSTEM && system_live(b, t, (u8)index) >= 0) {
         /* those OpenRCX has: 13 IR range 0/1, 20 power-down minutes, 38 a new datalog; the others read only */
-        if (index == 13 ? (u16)value <= 1 : index == 20 ? (u16)value <= 0xFF : 0) {
-            b->tx_range = index == 13 ? (u8)value : b->tx_range;
+        if (index == 38) {
+            if (value >= 0)
+                datalog_set(b, (u16)value);
+        } else if ((u16)value <= 0xFF) {
             if (index == 20) {
                 b->power_down_min = (u8)value;
                 b->idle_reset = 1;
             }
+            if (index == 13 && value <= 1)
+                b->tx_range = (u8)value;
         }
-        if (index == 38 && value >= 0)
-            datalog_set(b, (u16)value);
         return;
     }
 #endif
@@ -315,6 +351,10 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         }
         if (src == RCX_SRC_TIMER10)
             value = (s16)((u16)value / 10u);
+#if RCX_SWAN
+        if (src == RCX_SRC_MS_TIMER)   /* its field is the base it counts from */
+            value = (s16)(b->ms_now - (u16)value);
+#endif
         if (src == RCX_SRC_WATCH) {
             if (value >= 24 * 60)
                 return;
@@ -329,7 +369,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         *(s16 *)(void *)p = value;
     else
         *p = (u8)value;
-    if (src == RCX_SRC_MESSAGE)
+    if (src == RCX_SRC_MESSAGE && (!RCX_SWAN || !index)) /* (index 1: Swan's parameter, no event) */
         events_message_changed(b);
 #if RCX_SWAN
     if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
@@ -338,28 +378,3 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     if (src == RCX_SRC_COUNTER)
         events_counter_changed(b, (u8)index);
 }
-
-#if RCX_SWAN
-/*
- * Swan's motor powers (5 signed, 16 0-127, 32 0-7; 7 brake power is only kept): each source keeps what was written
- * through it (its field), and the output's RCX 2.0 power becomes the nearest of the 8 levels, level = (p x 7 + 63) /
- * 127 on the 128 scale, a signed one's direction too (0 keeps it). Values beyond the scale give the end of it.
- */
-void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
-{
-    u16 p = (u16)(value < 0 ? -value : value);
-    u16 change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, 7);
-
-    if (value < 0 && src != RCX_SRC_POWER_SIGNED)
-        return;
-    if (p > 127)
-        p = 127;                       /* the end of the scale; and p x 7 stays within 16 bits */
-    if (src != RCX_SRC_POWER8)
-        p = (u16)((p * 7u + 63u) / 127u);
-    if (p < 7)
-        change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, p);
-    if (src == RCX_SRC_POWER_SIGNED && value)
-        change |= OUTPUTS_CHANGE(RCX_MOTOR_FWD, value > 0 ? RCX_MOTOR_FWD : 0);
-    outputs_update(b, (u8)(1u << motor), change);
-}
-#endif
