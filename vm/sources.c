@@ -204,6 +204,27 @@ static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
         change |= OUTPUTS_CHANGE(RCX_MOTOR_FWD, value > 0 ? RCX_MOTOR_FWD : 0);
     outputs_update(b, (u8)(1u << motor), change);
 }
+
+/* A write to a system setting (24): those OpenRCX has take it (13 IR range 0/1, 20 power-down minutes, 38 a new
+ * datalog) or ignore it (the other live ones read only); 0 for the others, which keep the value (SHAPE_STORE). */
+static u8 system_write(struct rcx *b, u8 i, s16 value)
+{
+    if (i == 38) {
+        if (value >= 0)
+            datalog_set(b, (u16)value);
+    } else if (i == 13) {
+        if ((u16)value <= 1)
+            b->tx_range = (u8)value;
+    } else if (i == 20) {
+        if ((u16)value <= 0xFF) {
+            b->power_down_min = (u8)value;
+            b->idle_reset = 1;
+        }
+    } else {
+        return system_live(b, b->task, i) >= 0; /* (any task: which one asks changes no answer's presence) */
+    }
+    return 1;
+}
 #endif
 
 s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
@@ -309,21 +330,8 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         events_set(b, (u8)index, k, type);
         return;
     }
-    if (src == RCX_SRC_SYSTEM && system_live(b, t, (u8)index) >= 0) {
-        /* those OpenRCX has: 13 IR range 0/1, 20 power-down minutes, 38 a new datalog; the others read only */
-        if (index == 38) {
-            if (value >= 0)
-                datalog_set(b, (u16)value);
-        } else if ((u16)value <= 0xFF) {
-            if (index == 20) {
-                b->power_down_min = (u8)value;
-                b->idle_reset = 1;
-            }
-            if (index == 13 && value <= 1)
-                b->tx_range = (u8)value;
-        }
+    if (src == RCX_SRC_SYSTEM && system_write(b, (u8)index, value))
         return;
-    }
 #endif
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
