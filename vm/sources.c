@@ -74,8 +74,16 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
     return r;
 }
 
-/* The asker is a task of a Swan program (rcx.swan: decided when its download completed). */
-#define SWAN_TASK(b, t) (RCX_SWAN && (t) && (b)->swan[(b)->prog])
+/* `need` for row(), and ASK_SWAN when the asker is a task of a Swan program (rcx.swan: decided when its download
+ * completed). */
+#if RCX_SWAN
+static u8 asker(const struct rcx *b, const struct rcx_task *t, u8 need)
+{
+    return t && b->swan[b->prog] ? (u8)(need | ASK_SWAN) : need;
+}
+#else
+#define asker(b, t, need) (need)
+#endif
 
 /* The field of a plain source at an index already checked (<= 47). Both factors are byte variables so that gcc
  * multiplies with one mulxu instead of calling __mulhi3; inlined, it leaves source_get() a register to spare. */
@@ -237,7 +245,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return (s16)index;
     if ((src == RCX_SRC_VAR && index < RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_GLOBAL && index < RCX_ALL_GLOBALS))
         return b->global[index];
-    if ((r = row(src, index, (u8)(LIMIT_EXISTS | (SWAN_TASK(b, t) ? ASK_SWAN : 0)))) == NULL)
+    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS))) == NULL)
         return 0;
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM) {
@@ -307,7 +315,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     s16 *v;
     u8 *p;
 
-    if ((r = row(src, index, (u8)(LIMIT_EXISTS | LIMIT_WRITABLE | (SWAN_TASK(b, t) ? ASK_SWAN : 0)))) == NULL)
+    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS | LIMIT_WRITABLE))) == NULL)
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
     if (IS_VARIABLE(src)) {
