@@ -168,8 +168,8 @@ static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
 {
     if (i == 0)
         return (s16)b->battery_mv;
-    if (i == 3)
-        return t ? (s16)(t - b->task) : 0;
+    if (i == 3)                        /* (only a task asks: source 24 is a Swan program's) */
+        return (s16)(t - b->task);
     if (i == 13)
         return b->tx_range;
     if (i == 20)
