@@ -46,8 +46,7 @@ void remote_command(struct rcx *b, u16 bits)
         sound_system(b, REMOTE_SYSTEM_SOUND);
     if ((u8)(pressed >> 8) & (u8)(REMOTE_MESSAGES >> 8)) {
         /* As InternMessage would: PB message 1-3. */
-        b->message = (u8)(lowest_bit((u8)(pressed >> 8)) + 1);
-        events_message_changed(b);
+        ops_set_message(b, (u8)(lowest_bit((u8)(pressed >> 8)) + 1));
     }
 }
 
@@ -89,10 +88,8 @@ void remote_sent(struct rcx *b)
 {
     u8 m = b->remote.follow;
 
-    if (m) {
-        b->remote.follow = 0;
-        remote_send_message(b, (u8)(m - 1));
-    }
+    if (m)
+        remote_send_message(b, (u8)(m - 1)); /* (which clears follow) */
 }
 
 void remote_param_received(struct rcx *b, const u8 *cmd)
