@@ -63,23 +63,27 @@ static u8 *put_word(u8 *p, u16 w)
 
 u8 mem_memmap(const struct rcx *b, u8 *out)
 {
-    u8 *p = out;
     u16 base = b->arena_addr;
     u16 log = (u16)(base + CODE_END(b));
-    u8 tasks, obj, n;
+    const u16 *start = b->obj_start;
+    u8 run = RCX_SUBS, n;
 
-    /* The subroutines of every slot, then the tasks: two passes over the objects, n their number in the slot. */
-    for (tasks = 0; tasks < 2; tasks++)
-        for (obj = n = 0; obj < RCX_OBJS; obj++) {
-            if ((n >= RCX_SUBS) == tasks)
-                p = put_word(p, (u16)(base + b->obj_start[obj]));
-            if (++n == RCX_SLOT_OBJS)
-                n = 0;
+    /* The subroutines of every slot (a run of 8 objects a slot), then the tasks (runs of 10 from object 8). */
+    for (;;) {
+        for (n = 0; n < run; n++)
+            out = put_word(out, (u16)(base + start[n]));
+        start += RCX_SLOT_OBJS;
+        if (start >= &b->obj_start[RCX_OBJS]) {
+            if (run == RCX_TASKS)
+                break;
+            start = &b->obj_start[RCX_SUBS];
+            run = RCX_TASKS;
         }
-    p = put_word(p, log);
-    p = put_word(p, (u16)(log + b->log_count * 3u));
-    p = put_word(p, (u16)(log + LOG_BYTES(b)));
+    }
+    out = put_word(out, log);
+    out = put_word(out, (u16)(log + b->log_count * 3u));
+    out = put_word(out, (u16)(log + LOG_BYTES(b)));
     /* firm0328 hosts compute free memory as word 93 - word 92, so 93 is the end of the arena, not its last byte. */
-    p = put_word(p, (u16)(base + RCX_ARENA_SIZE));
-    return (u8)(p - out);
+    put_word(out, (u16)(base + RCX_ARENA_SIZE));
+    return (RCX_OBJS + 4) * 2;
 }
