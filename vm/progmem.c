@@ -35,15 +35,18 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 u8 mem_resize(struct rcx *b, u8 obj, u16 size)
 {
     u16 *start = &b->obj_start[obj + 1];
-    u16 tail = *start, old = (u16)(tail - start[-1]), free = mem_free(b);
-    u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: one path for both */
+    u16 tail = *start, old = (u16)(tail - start[-1]), end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
+    u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: the offsets add it alike */
     u8 *at = b->arena + tail;
 
-    if (size > old && delta > free)
-        return 0;
-    memmove(b->arena + (u16)(tail + delta), at, (size_t)(RCX_ARENA_SIZE - free - tail)); /* to the datalog end */
-    if (size > old)
+    if (size > old) {              /* growth: it needs the room, and the bytes gained are zero */
+        if (delta > (u16)(RCX_ARENA_SIZE - end))
+            return 0;
+        memmove(at + delta, at, (size_t)(end - tail));
         memset(at, 0, delta);
+    } else {
+        memmove(at - (u16)(old - size), at, (size_t)(end - tail));
+    }
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
     return 1;
