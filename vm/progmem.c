@@ -28,7 +28,9 @@ const u8 *mem_obj_code(const struct rcx *b, u8 obj)
 u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 {
     /* Code still being downloaded must not run (reference-firmware.md, "Downloads"). */
-    return mem_obj_size(b, obj) != 0 && !(b->dl.active && b->dl.obj == obj);
+    if (b->dl.active && b->dl.obj == obj)
+        return 0;
+    return mem_obj_size(b, obj) != 0;
 }
 
 /* Keeps the first min(old, new) bytes of the object; bytes it gains are zero. */
