@@ -190,6 +190,7 @@ static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
  * through it (its field), and the output's RCX 2.0 power becomes the nearest of the 8 levels, level = (p x 7 + 63) /
  * 127 on the 128 scale, a signed one's direction too (0 keeps it). Values beyond the scale give the end of it.
  */
+static const u8 motor_bit[RCX_MOTORS] = { 1, 2, 4 }; /* 1 << motor, without a shift loop */
 static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
 {
     u8 p = 127;                        /* the end of the scale */
@@ -210,7 +211,7 @@ static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
     change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, p);
     if (src == RCX_SRC_POWER_SIGNED && value)
         change |= OUTPUTS_CHANGE(RCX_MOTOR_FWD, value > 0 ? RCX_MOTOR_FWD : 0);
-    outputs_update(b, (u8)(1u << motor), change);
+    outputs_update(b, motor_bit[motor], change);
 }
 
 /* A write to a system setting (24): those OpenRCX has take it (13 IR range 0/1, 20 power-down minutes, 38 a new
