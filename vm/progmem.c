@@ -20,11 +20,6 @@ u16 mem_obj_size(const struct rcx *b, u8 obj)
     return (u16)(b->obj_start[obj + 1] - b->obj_start[obj]);
 }
 
-const u8 *mem_obj_code(const struct rcx *b, u8 obj)
-{
-    return b->arena + b->obj_start[obj];
-}
-
 u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 {
     /* Code still being downloaded must not run (reference-firmware.md, "Downloads"). */

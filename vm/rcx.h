@@ -157,7 +157,7 @@ s16 *var_ref(struct rcx *b, const struct rcx_task *t, u16 n); /* NULL when n is 
 /* Program memory (vm/progmem.c). */
 u16 mem_free(const struct rcx *b);
 u16 mem_obj_size(const struct rcx *b, u8 obj);
-const u8 *mem_obj_code(const struct rcx *b, u8 obj);
+static inline const u8 *mem_obj_code(const struct rcx *b, u8 obj) { return b->arena + b->obj_start[obj]; } /* (tests) */
 u8 mem_obj_runnable(const struct rcx *b, u8 obj);
 u8 mem_resize(struct rcx *b, u8 obj, u16 size); /* 0 when memory is short; contents of obj are lost */
 void mem_delete(struct rcx *b, u8 obj);
