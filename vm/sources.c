@@ -141,16 +141,13 @@ RCX_STATIC_ASSERT(variable_sources, RCX_SRC_GLOBAL_IND == RCX_SRC_GLOBAL + 1 && 
 
 #if RCX_SWAN
 /* Datalog read-back (37-42, firm0332): the type or value of entry n, or byte n; entry 0 is the header (type 0xFF,
- * entries used including it). The even sources take n itself, the odd ones (NQC's "Ind") from variable n. */
-static __attribute__((noinline)) s16 log_read(struct rcx *b, const struct rcx_task *t, u8 src, u16 n)
+ * entries used including it). The even sources take n itself, the odd ones (NQC's "Ind") from variable n, which the
+ * caller reads. Out of line: inlined, it costs source_get() registers. */
+static __attribute__((noinline)) s16 log_read(const struct rcx *b, u8 src, u16 n)
 {
     const u8 *log = b->arena + b->obj_start[RCX_OBJS];
     u16 used = b->log_count;
 
-    if (src & 1) {
-        const s16 *v = var_ref(b, t, n);
-        n = v ? (u16)*v : 0xFFFFu;     /* no such variable: no such entry */
-    }
     if (src < RCX_SRC_LOG_BYTE_IND) {  /* entry n: from here on its first byte */
         if (n >= used)
             return 0;
@@ -263,8 +260,13 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return v ? *v : 0;
     }
 #if RCX_SWAN
-    if (src >= RCX_SRC_LOG_TYPE_IND)
-        return log_read(b, t, src, index);
+    if (src >= RCX_SRC_LOG_TYPE_IND) {
+        if (src & 1) {                 /* (n from variable n) */
+            v = var_ref(b, t, index);
+            index = v ? (u16)*v : 0xFFFFu; /* no such variable: no such entry */
+        }
+        return log_read(b, src, index);
+    }
     if (src == RCX_SRC_MS_TIMER)       /* the field is the base */
         return (s16)((u16)(b->ms_now - *(const u16 *)(const void *)p) & 0x7FFF);
     if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
