@@ -302,10 +302,10 @@ s16 source_poll(struct rcx *b, const u8 *cmd)
     u8 src = cmd[1], index = cmd[2];
 
     /* 0: 0-31; 36: 0-47 (32-47 read 0 from a host), as firm0328 answers (the rows allow more for a Swan task) */
-    if (src == RCX_SRC_VAR ? index < RCX_GLOBALS
-                           : (RCX_SWAN && src == RCX_SRC_INDIRECT) ? index < RCX_VARS : row(src, index, LIMIT_EXISTS) != NULL)
-        return source_get(b, NULL, src, index);
-    return (s16)-32768;
+    if ((src == RCX_SRC_VAR && index >= RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_INDIRECT && index >= RCX_VARS)
+        || !row(src, index, LIMIT_EXISTS))
+        return (s16)-32768;
+    return source_get(b, NULL, src, index);
 }
 
 /*
