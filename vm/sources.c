@@ -142,8 +142,8 @@ RCX_STATIC_ASSERT(variable_sources, RCX_SRC_GLOBAL_IND == RCX_SRC_GLOBAL + 1 && 
 #if RCX_SWAN
 /* Datalog read-back (37-42, firm0332): the type or value of entry n, or byte n; entry 0 is the header (type 0xFF,
  * entries used including it). The even sources take n itself, the odd ones (NQC's "Ind") from variable n, which the
- * caller reads. Out of line: inlined, it costs source_get() registers. */
-static __attribute__((noinline)) s16 log_read(const struct rcx *b, u8 src, u16 n)
+ * caller reads. */
+static s16 log_read(const struct rcx *b, u8 src, u16 n)
 {
     const u8 *log = b->arena + b->obj_start[RCX_OBJS];
     u16 used = b->log_count;
