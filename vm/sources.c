@@ -329,8 +329,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 #if RCX_SWAN
     if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
         /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
-        u8 i = (u8)index, size = sizeof(struct rcx_event); /* two byte variables: one mulxu */
-        const struct rcx_event *e = (const struct rcx_event *)(const void *)((const u8 *)b->event + (u16)(i * size));
+        const struct rcx_event *e = &b->event[(u8)index];
         u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
         if ((u16)value > 0xFF)         /* events_set() checks the rest */
             return;
