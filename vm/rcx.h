@@ -98,7 +98,7 @@ struct rcx {
     u8 message;     /* source 15 */
     s16 msg_param;  /* source 15 index 1: Swan's message parameter */
     s16 swan_power[RCX_SWAN_N(4)][RCX_MOTORS]; /* sources 5, 16, 32, 7 as last written (sources.c) */
-    s16 system[RCX_SWAN_N(RCX_SYSTEM)];  /* source 24 settings OpenRCX does not have: kept, no effect */
+    s16 system[RCX_SWAN_N(RCX_SYSTEM)];  /* source 24 as written: read back for the settings OpenRCX does not have */
 
     struct rcx_sensor sensor[RCX_SENSORS];
     u8 sensors_rest;   /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */

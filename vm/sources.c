@@ -211,9 +211,9 @@ static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
     outputs_update(b, motor_bit[motor], change);
 }
 
-/* A write to a system setting (24): those OpenRCX has take it (13 IR range 0/1, 20 power-down minutes, 38 a new
- * datalog) or ignore it (the other live ones read only); 0 for the others, which keep the value (SHAPE_STORE). */
-static u8 system_write(struct rcx *b, u8 i, s16 value)
+/* A system setting (24) was written: it is kept (and read back if OpenRCX has no such setting: system_live()); those
+ * OpenRCX has that a program may change take it too (13 IR range 0/1, 20 power-down minutes, 38 a new datalog). */
+static void system_write(struct rcx *b, u8 i, s16 value)
 {
     if (i == 38) {
         if (value >= 0)
@@ -226,10 +226,7 @@ static u8 system_write(struct rcx *b, u8 i, s16 value)
             b->power_down_min = (u8)value;
             b->idle_reset = 1;
         }
-    } else {
-        return system_live(b, b->task, i) >= 0; /* (any task: which one asks changes no answer's presence) */
     }
-    return 1;
 }
 #endif
 
@@ -340,8 +337,6 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         events_set(b, (u8)index, k, type);
         return;
     }
-    if (src == RCX_SRC_SYSTEM && system_write(b, (u8)index, value))
-        return;
 #endif
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
@@ -390,6 +385,8 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     if (src == RCX_SRC_MESSAGE && (!RCX_SWAN || !index)) /* (index 1: Swan's parameter, no event) */
         events_message_changed(b);
 #if RCX_SWAN
+    if (src == RCX_SRC_SYSTEM)
+        system_write(b, (u8)index, value);
     if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
         swan_power(b, src, (u8)index, value);
 #endif
