@@ -323,21 +323,6 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             *v = value;
         return;
     }
-#if RCX_SWAN
-    if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
-        /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
-        const struct rcx_event *e = &b->event[(u8)index];
-        u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
-        if ((u16)value > 0xFF)         /* events_set() checks the rest */
-            return;
-        if (src == RCX_SRC_EVENT_SRC)
-            k = (u8)value;
-        else
-            type = (u8)value;
-        events_set(b, (u8)index, k, type);
-        return;
-    }
-#endif
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
@@ -376,6 +361,21 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
         if (src == RCX_SRC_DURATION && value < 5)
             return;
+#if RCX_SWAN
+        if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
+            /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
+            const struct rcx_event *e = &b->event[(u8)index];
+            u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
+            if (value > 0xFF)              /* (not below 0 here) events_set() checks the rest */
+                return;
+            if (src == RCX_SRC_EVENT_SRC)
+                k = (u8)value;
+            else
+                type = (u8)value;
+            events_set(b, (u8)index, k, type);
+            return;
+        }
+#endif
     }
     p = field(b, r, index);
     if (r->shape & SHAPE_WORD)
