@@ -36,16 +36,16 @@ u8 mem_resize(struct rcx *b, u8 obj, u16 size)
     u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: the offsets add it alike */
     u8 *at = b->arena + tail;
 
-    if (size > old) {              /* growth: it needs the room, and the bytes gained are zero */
-        if (delta > (u16)(RCX_ARENA_SIZE - end))
-            return 0;
+    if (size > old && delta > (u16)(RCX_ARENA_SIZE - end))
+        return 0;                  /* growth needs the room */
+    for (; start <= &b->obj_start[RCX_OBJS]; start++)
+        *start = (u16)(*start + delta);
+    if (size > old) {              /* the bytes gained are zero */
         memmove(at + delta, at, (size_t)(end - tail));
         memset(at, 0, delta);
     } else {
         memmove(at - (u16)(old - size), at, (size_t)(end - tail));
     }
-    for (; start <= &b->obj_start[RCX_OBJS]; start++)
-        *start = (u16)(*start + delta);
     return 1;
 }
 
