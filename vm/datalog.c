@@ -39,9 +39,10 @@ void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index)
     /* Task locals (index >= 32) cannot be logged: their number does not fit the 5-bit index (spec p. 55). */
     if (src >= sizeof entry_kind || (kind = entry_kind[src]) == 0xFF || index >= 32 || b->log_count >= b->log_size)
         return;
+    kind |= index;                    /* (the entry type now: one byte kept across the call) */
     value = source_get(b, t, src, index);
     log = LOG_ADDR(b);
-    put_entry(log + b->log_count * 3u, (u8)(kind | index), (u16)value);
+    put_entry(log + b->log_count * 3u, kind, (u16)value);
     put_entry(log, 0xFF, ++b->log_count);
 }
 
