@@ -54,6 +54,7 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
 
     if (count > (RCX_REPLY_MAX - 1) / 3 || start > used || count > used - start)
         return -1;
-    memcpy(out, b->log_count ? LOG_ADDR(b) + start * 3u : empty, count * 3u);
-    return (s16)(count * 3u);
+    count = (u16)(count * 3u);         /* in bytes */
+    memcpy(out, b->log_count ? LOG_ADDR(b) + start * 3u : empty, count);
+    return (s16)count;
 }
