@@ -50,7 +50,7 @@ static const struct source_row msg_param_row = {
 
 /* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
  * program (ASK_SWAN) Swan's sources (SW) exist too. */
-#define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task */
+#define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task (rcx.swan's 1) */
 static const struct source_row *row(u8 src, u16 index, u8 need)
 {
     const struct source_row *r;
@@ -77,9 +77,12 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
 /* `need` for row(), and ASK_SWAN when the asker is a task of a Swan program (rcx.swan: decided when its download
  * completed). */
 #if RCX_SWAN
+RCX_STATIC_ASSERT(ask_swan, ASK_SWAN == 1); /* rcx.swan holds 0 or 1 (vm/swan.c) */
 static u8 asker(const struct rcx *b, const struct rcx_task *t, u8 need)
 {
-    return t && b->swan[b->prog] ? (u8)(need | ASK_SWAN) : need;
+    if (t)
+        need |= b->swan[b->prog];      /* (0 or 1: ASK_SWAN) */
+    return need;
 }
 #else
 #define asker(b, t, need) (need)
