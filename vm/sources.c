@@ -34,19 +34,17 @@ RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
     (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store))
 #define FIELD(field, elem, store) PLACE(field, elem, (store) | SHAPE_FIELD)
 
-static const struct source_row rows[RCX_SOURCE_COUNT] = {
+/* After the sources, Swan's message parameter, source 15 index 1: a word beside the message, a row of its own (stride
+ * 0: index 1 is the field itself), which row() gives for that index. */
+#define MSG_PARAM_ROW RCX_SOURCE_COUNT
+static const struct source_row rows[RCX_SOURCE_COUNT + RCX_SWAN] = {
 #define RCX_SRC(num, id, name, max, access, place) [num] = { place, (u8)((max) | (access)) },
 #include "sources.def"
 #undef RCX_SRC
-};
-
 #if RCX_SWAN
-/* Swan's message parameter, source 15 index 1: a word beside the message, a row of its own (stride 0: index 1 is the
- * field itself). */
-static const struct source_row msg_param_row = {
-    (u16)offsetof(struct rcx, msg_param), SHAPE_WORD | SHAPE_STORE | SHAPE_FIELD, 1 | SW
-};
+    [MSG_PARAM_ROW] = { (u16)offsetof(struct rcx, msg_param), SHAPE_WORD | SHAPE_STORE | SHAPE_FIELD, 1 | SW },
 #endif
+};
 
 /* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
  * program (ASK_SWAN) Swan's sources (SW) exist too. */
@@ -57,11 +55,11 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
     u8 max, limits;
     if (src >= RCX_SOURCE_COUNT)
         return NULL;
-    r = &rows[src];
 #if RCX_SWAN
     if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
-        r = &msg_param_row;
+        src = MSG_PARAM_ROW;
 #endif
+    r = &rows[src];
     limits = r->limits;
     if (RCX_SWAN && (need & ASK_SWAN)) {
         need &= (u8)~ASK_SWAN;
