@@ -213,8 +213,9 @@ static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
 }
 
 /* A system setting (24) was written: it is kept (and read back if OpenRCX has no such setting: system_live()); those
- * OpenRCX has that a program may change take it too (13 IR range 0/1, 20 power-down minutes, 38 a new datalog). */
-static void system_write(struct rcx *b, u8 i, s16 value)
+ * OpenRCX has that a program may change take it too (13 IR range 0/1, 20 power-down minutes, 38 a new datalog). Out
+ * of line: source_set() is then short enough for more of its jumps to be short ones. */
+static __attribute__((noinline)) void system_write(struct rcx *b, u8 i, s16 value)
 {
     if (i == 38) {
         if (value >= 0)
