@@ -330,6 +330,10 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             b->random = (u16)value ? (u16)value : 0xACE1;
         return;
     }
+#if RCX_SWAN
+    if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
+        swan_power(b, src, (u8)index, value); /* (then stored: read back as written) */
+#endif
     /* Thresholds, click counter, UART buffer, message and counters (SHAPE_STORE) take any value; the rest none
      * below 0. */
     if (!(r->shape & SHAPE_STORE)) {
@@ -389,8 +393,6 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM)
         system_write(b, (u8)index, value);
-    if (src == RCX_SRC_POWER_SIGNED || src == RCX_SRC_POWER128 || src == RCX_SRC_POWER8)
-        swan_power(b, src, (u8)index, value);
 #endif
     if (src == RCX_SRC_COUNTER)
         events_counter_changed(b, (u8)index);
