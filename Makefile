@@ -41,8 +41,10 @@ host: deps-host
 	cmake -S . -B $(HOST_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 	cmake --build $(HOST_DIR) -j $(JOBS)
 
+# The image with Swan's programs (issue 16), named on the command line: a build folder made when it was not the
+# default keeps its cached choice otherwise. (-DRCX_IMAGE_SWAN=OFF in another folder: the image without them.)
 firmware: deps-target
-	cmake -S . -B $(TARGET_DIR) -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/linker/h8300-hms.cmake >/dev/null
+	cmake -S . -B $(TARGET_DIR) -DCMAKE_TOOLCHAIN_FILE=$(CURDIR)/linker/h8300-hms.cmake -DRCX_IMAGE_SWAN=ON >/dev/null
 	cmake --build $(TARGET_DIR) -j $(JOBS)
 
 # The suite runs twice: as built for speed, and under AddressSanitizer + UndefinedBehaviorSanitizer (clang).
