@@ -61,25 +61,23 @@ void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
     u8 s = t->ev.state, n = ACCESS_NONE;
 
-    if (input != ACCESS_IN_END) {
-        if (input & 1) { /* AC, EXIT AC */
-            if (!ACCESS_HAS_AC(s))
-                return;
-            if (s == ACCESS_EV_AC)
-                n = ACCESS_EV;
-        } else {
-            if (!ACCESS_HAS_EV(s))
-                return;
-            if (s == ACCESS_AC_EV)
-                n = ACCESS_AC;
-        }
-        if (input <= ACCESS_IN_AC) { /* EV (0) or AC (1): the label of that region, one load each */
-            t->sub = label_sub(t, input);
-            jump(b, t, label_pc(t, input));
-        }
+    if (input & 1) { /* AC, EXIT AC */
+        if (!ACCESS_HAS_AC(s))
+            return;
+        if (s == ACCESS_EV_AC)
+            n = ACCESS_EV;
+    } else {
+        if (!ACCESS_HAS_EV(s))
+            return;
+        if (s == ACCESS_AC_EV)
+            n = ACCESS_AC;
     }
-    if (!ACCESS_HAS_AC(n))
-        t->ev.rc = 0; /* RELEASE RC */
+    if (input <= ACCESS_IN_AC) { /* EV (0) or AC (1): the label of that region, one load each */
+        t->sub = label_sub(t, input);
+        jump(b, t, label_pc(t, input));
+    }
+    if (n != ACCESS_AC) /* NONE or EV: no access region left */
+        t->ev.rc = 0;   /* RELEASE RC */
     t->ev.state = n;
 }
 
@@ -88,11 +86,13 @@ void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 static u8 granted(const struct rcx *b, const struct rcx_task *t, u8 res)
 {
     const struct rcx_task *u = b->task;
+    u8 n = RCX_TASKS; /* a count: cheaper than comparing with the end of b->task */
 
-    do
+    do {
         if ((u->ev.rc & res) && u->priority < t->priority)
             return 0;
-    while (++u < b->task + RCX_TASKS);
+        u++;
+    } while (--n);
     return 1;
 }
 
@@ -113,7 +113,6 @@ void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 targe
  * performed directly. */
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
 {
-    u8 s = t->ev.state;
     struct rcx_task *u;
 
     if (granted(b, t, resources)) {
@@ -129,14 +128,14 @@ void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
             }
         while (++u < b->task + RCX_TASKS);
         t->ev.rc = resources;
-        t->ev.state = (u8)(ACCESS_AC | (s & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
+        t->ev.state = (u8)(ACCESS_AC | (t->ev.state & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
     } else {
         /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the same
-         * place: what remains of it is EXIT AC, which does nothing outside an access region. */
+         * place: what remains of it is EXIT AC. */
         jump(b, t, target);
-        access_input(b, t, ACCESS_IN_EXIT_AC);
-        if (!ACCESS_HAS_AC(s))
+        if (!ACCESS_HAS_AC(t->ev.state))
             return;
+        access_input(b, t, ACCESS_IN_EXIT_AC);
     }
     /* AC=LBL: after the IF OK, or before it in the states with an access region (neither JUMP nor EXIT AC reads
      * it). */

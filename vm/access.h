@@ -27,9 +27,8 @@ enum access_input {
     ACCESS_IN_EV = 0,    /* a monitored event happened */
     ACCESS_IN_AC,        /* a task of equal or higher priority took some of RC */
     ACCESS_IN_EXIT_EV,   /* ExitEventCheck */
-    ACCESS_IN_EXIT_AC,   /* ExitAccessControl */
-    ACCESS_IN_END        /* START, STOP, DELETE TASK */
-};
+    ACCESS_IN_EXIT_AC    /* ExitAccessControl */
+};                       /* START, STOP, DELETE TASK: events_task_ended() (vm/events.h), which only ends everything */
 
 #define ACCESS_HAS_EV(state) ((u8)((state) & ACCESS_EV)) /* EV, EV->AC, AC->EV */
 #define ACCESS_HAS_AC(state) ((u8)((state) & ACCESS_AC)) /* AC, EV->AC, AC->EV */
