@@ -165,12 +165,17 @@ static s16 fraction(s16 v, u8 f)
     return (s16)((m ^ s) - s);
 }
 
-/* a + b, saturated to the 16-bit range. */
+/* a + b, saturated to the 16-bit range: the wrapped sum moved the wrong way from a when it overflowed. */
 static s16 add_sat(s16 a, s16 b)
 {
     s16 r = (s16)(u16)((u16)a + (u16)b);
-    if ((a ^ r) & (b ^ r) & 0x8000)
-        r = (s16)(0x7FFF ^ (a >> 15)); /* the limit on a's side */
+
+    if (b < 0) {
+        if (r > a)
+            r = -32768;
+    } else if (r < a) {
+        r = 32767;
+    }
     return r;
 }
 
@@ -201,7 +206,7 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. */
     e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
-    e->lower = add_sat((s16)(avg - fraction(avg, c->pct[0])), (s16)-e->hysteresis);
+    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
@@ -219,9 +224,9 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
 
     if (e->state == RCX_EVENT_STATE_LOW) {
         e->u.click.left_low = now;
-        f = (u8)((f & ~F_HIGH) | F_OUT);
+        f |= F_OUT;
     } else if (to == RCX_EVENT_STATE_LOW) {
-        if (!(~f & (F_OUT | F_HIGH)) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
+        if ((f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
             e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
             happened |= TYPE_8(RCX_EVENT_CLICK);
             if ((f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
@@ -235,7 +240,7 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
         /* Leaving LOW starts the next click afresh, so the progress can go in any case. */
         f &= (u8)~(F_OUT | F_HIGH);
     }
-    if (to == RCX_EVENT_STATE_HIGH)
+    if (to == RCX_EVENT_STATE_HIGH && (f & F_OUT))
         f |= F_HIGH;
     e->flags = f;
     return happened;
@@ -245,9 +250,16 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
  * while value > upper - h, LOW while value < lower + h. Moved thresholds stop at the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
-    if (value > (e->state == RCX_EVENT_STATE_HIGH ? add_sat(e->upper, (s16)-e->hysteresis) : e->upper))
+    s16 h = e->hysteresis;
+
+    if (e->state != RCX_EVENT_STATE_HIGH)
+        h = 0;
+    if (value > add_sat(e->upper, (s16)-h))
         return RCX_EVENT_STATE_HIGH;
-    if (value < (e->state == RCX_EVENT_STATE_LOW ? add_sat(e->lower, e->hysteresis) : e->lower))
+    h = e->hysteresis;
+    if (e->state != RCX_EVENT_STATE_LOW)
+        h = 0;
+    if (value < add_sat(e->lower, h))
         return RCX_EVENT_STATE_LOW;
     return RCX_EVENT_STATE_NORMAL;
 }
@@ -258,25 +270,22 @@ static u8 classify(const struct rcx_event *e, s16 value)
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
-    u8 s = (u8)(e->source - KEY(0)), to;
+    u8 s = (u8)(e->source - KEY(0)), to, bo;
     u16 happened = 0;
     s16 value;
 
-    if (only != ANY) {
-        if (s != only)
-            return 0;
-        if (s == RCX_EVENT_SRC_MESSAGE)
-            happened = HAPPENED(RCX_EVENT_MAILBOX);
-    }
     if (s < RCX_SENSORS) {
         in = &b->sensor[s];
         value = in->value;
-        if ((in->boolean ^ e->flags) & F_BOOL) { /* the boolean is 0 or 1 */
+        bo = in->boolean; /* 0 or 1 */
+        if (bo != (e->flags & F_BOOL)) {
             e->flags ^= F_BOOL;
-            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][in->boolean];
+            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][bo];
         }
     } else if (s == RCX_EVENT_SRC_MESSAGE) {
         value = b->message;
+        if (only != ANY) /* events_message_changed() */
+            happened = HAPPENED(RCX_EVENT_MAILBOX);
     } else { /* timer[s - 3] or global[s - 8] (counters), both 16-bit */
         value = *(const s16 *)(const void *)((const u8 *)b + 2u * s +
                                              (s < RCX_EVENT_SRC_MESSAGE
@@ -295,8 +304,9 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
     return happened && bit_of(happened, e->type);
 }
 
-/* Evaluate the events watching input `only`, or, when `only` is another sensor (ANY: any of them), those of the
- * events watching a timer, the message or a counter that watch it - `left` events in all - and tell the tasks. */
+/* Evaluate the events watching sensor `only` (ANY: any timer, the message or a counter) and tell the tasks. `left`
+ * is how many there are, when known (events_set() keeps the counts of each input and of the virtual sensors), so
+ * that the loop can stop at the last one; 0 when not known. */
 RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
                   sizeof(((struct rcx *)0)->global[0]) == 2);
 static void evaluate_set(struct rcx *b, u8 left, u8 only)
@@ -305,14 +315,16 @@ static void evaluate_set(struct rcx *b, u8 left, u8 only)
     u16 bit = 1, fired = 0;
     u8 k;
 
-    for (; left; bit <<= 1, e++) { /* the counts are exact (events_set() keeps them): the loop ends in the array */
+    do {
         k = e->source;
-        if (only < RCX_SENSORS ? k == KEY(only) : k > KEY(RCX_SENSORS - 1)) {
-            left--;
+        if (only == ANY ? k > KEY(RCX_SENSORS - 1) : k == only) {
             if (evaluate(b, e, only))
                 fired += bit; /* bits of distinct events: no carries */
+            if (!--left)
+                break;
         }
-    }
+        e++;
+    } while (bit <<= 1);
     if (fired)
         events_raise(b, fired);
 }
@@ -334,13 +346,13 @@ void events_raise(struct rcx *b, u16 mask)
 void events_counter_changed(struct rcx *b, u8 n)
 {
     if (n < RCX_COUNTERS)
-        evaluate_set(b, b->sensor[0].others, (u8)(RCX_EVENT_SRC_COUNTER + n));
+        evaluate_set(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
 }
 
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 void events_message_changed(struct rcx *b)
 {
-    evaluate_set(b, b->sensor[0].others, RCX_EVENT_SRC_MESSAGE);
+    evaluate_set(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
 }
 
 void events_input(struct rcx *b, u8 n)
@@ -349,7 +361,7 @@ void events_input(struct rcx *b, u8 n)
 
     if (n < RCX_SENSORS) {
         s = b->sensor + n;
-        evaluate_set(b, s->watched, n);
+        evaluate_set(b, s->watched, KEY(n));
     }
 }
 
