@@ -136,9 +136,6 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     e->upper = events_default[row][1];
 }
 
-RCX_STATIC_ASSERT(rem_count_are_last_click, offsetof(struct rcx_event, u.click.last_click) ==
-                  offsetof(struct rcx_event, u.cal.rem) && offsetof(struct rcx_event_cal, count) ==
-                  offsetof(struct rcx_event_cal, rem) + 1);
 void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
 {
     struct rcx_event *e;
@@ -147,11 +144,9 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
         return; /* a cleared event has no sensor to measure */
     e->state = RCX_EVENT_STATE_CAL_START;
     e->flags &= F_BOOL;
-    /* The sums and the count start from 0 (the pct bytes are set below): word stores, cheaper than a memset() of the
-     * union. The byte after pct[] is never used and stays 0 from SetEvent. */
     e->u.cal.sum8 = 0;
-    e->u.click.last_click = 0; /* rem and count */
     e->u.cal.raw_sum = 0;
+    e->u.cal.rem = 0;
     e->u.cal.pct[0] = lower;
     e->u.cal.pct[1] = upper;
     e->u.cal.pct[2] = hyst;
@@ -186,6 +181,7 @@ static s16 add_sat(s16 a, s16 b)
  * The raw-scale modes (pp. 104-105) are raw, percent (reflection), Celsius and Fahrenheit (temperature); the
  * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
  * the same A/D scale. */
+#define RAW_COUNT_ONE 0x2000 /* the top 3 bits of raw_sum count the samples (8 x 1023 fits in the 13 below) */
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
@@ -193,21 +189,21 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
-        c->sum8 = (s16)(c->sum8 + (avg >> 3));
         c->rem = (u8)(c->rem + (avg & 7));
-        c->raw_sum = (u16)(c->raw_sum + in->raw);
-        if (++c->count < CAL_SAMPLES_PHYSICAL)
-            return;
+        c->sum8 = (s16)(c->sum8 + (avg >> 3));
+        c->raw_sum = (u16)(c->raw_sum + in->raw + RAW_COUNT_ONE);
+        if (c->raw_sum >= RAW_COUNT_ONE)
+            return; /* fewer than 8 samples */
         avg = (s16)(c->sum8 + (c->rem >> 3));
         m = (u8)(in->mode & ~SENSOR_SLOPE);
         if ((u8)(m - SENSOR_MODE_BOOL) <= SENSOR_MODE_PERIODS - SENSOR_MODE_BOOL || m == SENSOR_MODE_ANGLE)
             c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. */
-    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3);
+    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[2]) >> 6);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
-    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 

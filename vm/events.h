@@ -57,10 +57,10 @@ struct rcx_event {
         } click;
         struct rcx_event_cal {
             s16 sum8;       /* of the values sampled so far, each divided by 8 ... */
+            u16 raw_sum;    /* of the raw samples (inputs only), and in the top 3 bits how many */
             u8 rem;         /* ... and of the remainders of those divisions */
-            u8 count;
-            u16 raw_sum;    /* of the raw samples (inputs only) */
             u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
+            u8 unused[2];   /* (struct rcx keeps its layout: drivers/h8300/runfast.h, RF_ARENA) */
         } cal;
     } u;
 };
