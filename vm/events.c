@@ -213,31 +213,33 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
 #define TYPE_8(type) ((u8)(1u << ((type) - 8)))
 RCX_STATIC_ASSERT(states_are_types, RCX_EVENT_STATE_LOW == 0 && RCX_EVENT_STATE_NORMAL == 1 &&
                   RCX_EVENT_STATE_HIGH == 2 && RCX_EVENT_LOW == 8 && RCX_EVENT_NORMAL == 9 && RCX_EVENT_HIGH == 10);
-static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
+static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
 {
     u16 now = b->ticks10;
     u8 f = e->flags, happened = (u8)(to + 1 + (to >> 1)); /* 1 << to: LOW, NORMAL, HIGH follow the states */
 
-    if (e->state == RCX_EVENT_STATE_LOW) {
-        e->u.click.left_low = now;
-        f |= F_OUT;
-    } else if (to == RCX_EVENT_STATE_LOW) {
+    if (to == RCX_EVENT_STATE_LOW) {
         if ((f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
             e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
             happened |= TYPE_8(RCX_EVENT_CLICK);
-            if ((f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
+            f ^= F_FIRST;
+            if (!(f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration)
                 happened |= TYPE_8(RCX_EVENT_DOUBLE_CLICK);
-                f &= (u8)~F_FIRST;
-            } else {
+            else {
                 f |= F_FIRST;
                 e->u.click.last_click = now;
             }
         }
         /* Leaving LOW starts the next click afresh, so the progress can go in any case. */
         f &= (u8)~(F_OUT | F_HIGH);
+    } else {
+        if (from == RCX_EVENT_STATE_LOW) {
+            e->u.click.left_low = now;
+            f |= F_OUT;
+        }
+        if (to == RCX_EVENT_STATE_HIGH && (f & F_OUT))
+            f |= F_HIGH;
     }
-    if (to == RCX_EVENT_STATE_HIGH && (f & F_OUT))
-        f |= F_HIGH;
     e->flags = f;
     return happened;
 }
@@ -266,7 +268,7 @@ static u8 classify(const struct rcx_event *e, s16 value)
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
-    u8 s = (u8)(e->source - KEY(0)), to, bo;
+    u8 s = (u8)(e->source - KEY(0)), to, from, bo;
     u16 happened = 0;
     s16 value;
 
@@ -293,10 +295,11 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
         return 0;
     }
     to = classify(e, value);
-    /* The first classification after SetEvent or a calibration is not a change of range. */
-    if (to != e->state && e->state != RCX_EVENT_STATE_UNDEFINED)
-        happened |= (u16)((u16)changed(b, e, to) << 8);
+    from = e->state;
     e->state = to;
+    /* The first classification after SetEvent or a calibration is not a change of range. */
+    if (to != from && from != RCX_EVENT_STATE_UNDEFINED)
+        happened |= (u16)((u16)changed(b, e, from, to) << 8);
     return happened && bit_of(happened, e->type);
 }
 
