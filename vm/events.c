@@ -82,15 +82,15 @@ static u8 bit_of(u16 set, u8 n)
 /* One more (d = 1) or one less (d = 0xFF) event watches the sensor whose KEY is k (not 0): an input counts its own
  * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the
  * input, or sensor[0]. */
-static struct rcx_sensor *watch(struct rcx *b, u8 k, u8 d)
+static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
 {
     struct rcx_sensor *s = b->sensor;
 
-    if (k > KEY(RCX_SENSORS - 1)) {
+    if (n >= RCX_SENSORS) {
         s->others = (u8)(s->others + d);
     } else {
-        s += k - KEY(0);
-        s->number = (u8)(k - KEY(0));
+        s += n;
+        s->number = n;
         s->watched = (u8)(s->watched + d);
         b->sensors_rest = 0;
     }
@@ -116,7 +116,7 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
         return;
     e = &b->event[ev];
     if (e->source)
-        watch(b, e->source, 0xFF);
+        watch(b, (u8)(e->source - KEY(0)), 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
     e->type = type;
     e->state = RCX_EVENT_STATE_UNDEFINED;
@@ -124,7 +124,7 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     if (type == RCX_EVENT_NONE)
         return;
     e->source = KEY(source);
-    in = watch(b, e->source, 1);
+    in = watch(b, source, 1);
     if (source < RCX_SENSORS) {
         row = (u8)(in->mode >> 5);
         /* Edges are counted from here on, not from whatever the input did before. */
@@ -276,7 +276,7 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
         in = &b->sensor[s];
         value = in->value;
         bo = in->boolean; /* 0 or 1 */
-        if (bo != (e->flags & F_BOOL)) {
+        if ((u8)(bo ^ e->flags) & F_BOOL) {
             e->flags ^= F_BOOL;
             happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][bo];
         }
