@@ -28,6 +28,7 @@
  *    the other region. A refused ENTER AC jumps to LBL, or inside an access region ends it (SEND AC) with LBL as
  *    its label. ENTER EV without events to monitor is EXIT EV.
  *  - START, STOP and DELETE TASK end everything.
+ * The states are bits (vm/access.h), so that testing for a region is one bit test.
  * RC is empty in the states without an access region, so releasing it there changes nothing.
  *
  * Where the table is silent or garbled:
@@ -56,7 +57,7 @@ RCX_STATIC_ASSERT(labels_are_pairs,
 #define label_pc(t, input) (*(const u16 *)(const void *)((const u8 *)&(t)->ev.ev_pc + 2u * (input)))
 #define label_sub(t, input) (*((const u8 *)&(t)->ev.ev_sub + (input)))
 
-/* The EV, AC, EXIT EV, EXIT AC or END input: the first and last rules above. */
+/* The EV, AC, EXIT EV or EXIT AC input: the first rule above (the last is events_task_ended(), vm/events.h). */
 void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
     u8 s = t->ev.state, n = ACCESS_NONE;

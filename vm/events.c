@@ -9,7 +9,7 @@
  *
  * Work goes only where events are: each input counts the events watching it and sensor[0] those watching a timer,
  * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
- * other sensors, costs nothing here, and an evaluation visits the events of one sensor only. An event on an input
+ * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only. An event on an input
  * is still looked at after every sample, steady or not: its thresholds can be moved by SetSourceValue, which does
  * not tell the engine, and a calibration samples every millisecond.
  */
@@ -59,8 +59,6 @@ static const s16 events_default[10][2] = {
     { -32768, 32767 },  /* counter */
 };
 
-#define CAL_SAMPLES_PHYSICAL 8  /* p. 74 */
-
 /* struct rcx_event.source is the KEY of the event's sensor, 0 for a cleared event: so an event is all zeros when it
  * has no sensor, as at power-on, before ClearAllEvents, when no input counts it yet. */
 #define KEY(sensor) ((u8)((sensor) + 1))
@@ -68,7 +66,7 @@ static const s16 events_default[10][2] = {
 /* Private flags of struct rcx_event. */
 #define F_BOOL 0x01     /* last boolean seen (inputs); the boolean is 0 or 1, so it is that bit */
 #define F_OUT 0x02      /* the state has left LOW: a click may be under way (click.left_low is its start) */
-#define F_HIGH 0x04     /* ... and has reached HIGH since */
+#define F_HIGH 0x04     /* ... and has reached HIGH since (set only with F_OUT) */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
 
 /* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. */
@@ -79,9 +77,8 @@ static u8 bit_of(u16 set, u8 n)
     return (u8)(set & 1u);
 }
 
-/* One more (d = 1) or one less (d = 0xFF) event watches the sensor whose KEY is k (not 0): an input counts its own
- * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the
- * input, or sensor[0]. */
+/* One more (d = 1) or one less (d = 0xFF) event watches sensor n: an input counts its own (and learns its number,
+ * for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the input, or sensor[0]. */
 static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
 {
     struct rcx_sensor *s = b->sensor;
@@ -143,7 +140,7 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
     if (ev >= RCX_EVENTS || !(e = &b->event[ev])->source)
         return; /* a cleared event has no sensor to measure */
     e->state = RCX_EVENT_STATE_CAL_START;
-    e->flags &= F_BOOL;
+    e->flags &= F_BOOL; /* no click under way: the union now holds the calibration */
     e->u.cal.sum8 = 0;
     e->u.cal.raw_sum = 0;
     e->u.cal.rem = 0;
@@ -174,14 +171,15 @@ static s16 add_sat(s16 a, s16 b)
     return r;
 }
 
-/* One calibration sample (pp. 74, 103-105) of `in`, the input measured (NULL: a virtual sensor, one sample).
+/* One calibration sample (pp. 74, 103-105) of `in`, the input measured (8 samples; NULL: a virtual sensor, one).
  * UT = Avg + Avg*UTFct/k1 (+ H), LT = Avg - Avg*LTFct/k1 (- H), H = AvgRaw*HFct/k2 for the raw-scale modes and 0
- * otherwise; k1 = 256, k2 = 2048 (H is (AvgRaw*HFct/256)/8). The average of 8 is kept as the sum of value/8 plus the
- * sum of the remainders, which stays within 16 bits. The hysteresis changes only when the thresholds do.
+ * otherwise; k1 = 256, k2 = 2048. The average of 8 is kept as the sum of value/8 plus the sum of the remainders, which
+ * stays within 16 bits; the raw samples add up to at most 8 x 1023, which leaves the top 3 bits of raw_sum to count
+ * them (8 steps of RAW_COUNT_ONE carry out of it). The hysteresis changes only when the thresholds do.
  * The raw-scale modes (pp. 104-105) are raw, percent (reflection), Celsius and Fahrenheit (temperature); the
  * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
  * the same A/D scale. */
-#define RAW_COUNT_ONE 0x2000 /* the top 3 bits of raw_sum count the samples (8 x 1023 fits in the 13 below) */
+#define RAW_COUNT_ONE 0x2000
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
@@ -199,15 +197,18 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
         if ((u8)(m - SENSOR_MODE_BOOL) <= SENSOR_MODE_PERIODS - SENSOR_MODE_BOOL || m == SENSOR_MODE_ANGLE)
             c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
-    /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. */
+    /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
+     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
     e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[2]) >> 6);
-    /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+    /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
+     * in the raw-scale modes, whose values are -200 or more: with the 8th sample one of them, Avg is above -28 700
+     * and H at most 127, so nothing to saturate. */
     e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 
-/* A change of state to `to` from a known state: the range entered, and the click bookkeeping (p. 102): a click is
+/* A change of state from `from` (known) to `to`: the range entered, and the click bookkeeping (p. 102): a click is
  * LOW -> HIGH -> LOW within the duration; a double click is a click that starts within the duration after the
  * previous click ended. Returns the event types that happened, all of them 8-15: bit n is type 8 + n. */
 #define TYPE_8(type) ((u8)(1u << ((type) - 8)))
@@ -222,15 +223,15 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
         if ((f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
             e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
             happened |= TYPE_8(RCX_EVENT_CLICK);
-            f ^= F_FIRST;
-            if (!(f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration)
+            f ^= F_FIRST; /* cleared if this click was waiting to be the second one */
+            if (!(f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
                 happened |= TYPE_8(RCX_EVENT_DOUBLE_CLICK);
-            else {
+            } else { /* this one waits for a second one */
                 f |= F_FIRST;
                 e->u.click.last_click = now;
             }
         }
-        /* Leaving LOW starts the next click afresh, so the progress can go in any case. */
+        /* Leaving LOW again starts the next click afresh, so the progress can go in any case. */
         f &= (u8)~(F_OUT | F_HIGH);
     } else {
         if (from == RCX_EVENT_STATE_LOW) {
@@ -245,7 +246,8 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
 }
 
 /* The state `value` puts event e in. Hysteresis widens the range being left (reference-firmware.md): HIGH holds
- * while value > upper - h, LOW while value < lower + h. Moved thresholds stop at the 16-bit limits. */
+ * while value > upper - h, LOW while value < lower + h; for the other thresholds h is 0. Moved thresholds stop at
+ * the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
     s16 h = e->hysteresis;
@@ -262,9 +264,10 @@ static u8 classify(const struct rcx_event *e, s16 value)
     return RCX_EVENT_STATE_NORMAL;
 }
 
-/* Evaluate event e against its sensor's present value, when that is sensor `only` (ANY: whatever it is). Only
- * events_message_changed() asks for the message: a mailbox event happened. Returns non-zero when the event fires. */
-#define ANY 0xFE /* above every sensor, and so is its KEY */
+/* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
+ * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
+ * non-zero when the event fires. */
+#define ANY 0xFE /* above every KEY */
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
@@ -303,9 +306,9 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
     return happened && bit_of(happened, e->type);
 }
 
-/* Evaluate the events watching sensor `only` (ANY: any timer, the message or a counter) and tell the tasks. `left`
- * is how many there are, when known (events_set() keeps the counts of each input and of the virtual sensors), so
- * that the loop can stop at the last one; 0 when not known. */
+/* Evaluate the events watching the sensor whose KEY is `only` (ANY: any timer, the message or a counter) and tell the
+ * tasks. `left` is how many there are, when known (events_set() keeps the counts of each input and of the other
+ * sensors), so that the loop can stop at the last one; 0 when not known: all 16 are looked at. */
 RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
                   sizeof(((struct rcx *)0)->global[0]) == 2);
 static void evaluate_set(struct rcx *b, u8 left, u8 only)

@@ -56,11 +56,11 @@ struct rcx_event {
             u16 last_click; /* rcx.ticks10 at the end of a click still waiting for its double */
         } click;
         struct rcx_event_cal {
-            s16 sum8;       /* of the values sampled so far, each divided by 8 ... */
-            u16 raw_sum;    /* of the raw samples (inputs only), and in the top 3 bits how many */
-            u8 rem;         /* ... and of the remainders of those divisions */
+            s16 sum8;       /* of the values sampled so far, each divided by 8 (rem: the remainders) */
+            u16 raw_sum;    /* of the raw samples (inputs only), and in its top 3 bits how many */
+            u8 rem;
             u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
-            u8 unused[2];   /* (struct rcx keeps its layout: drivers/h8300/runfast.h, RF_ARENA) */
+            u8 unused[2];   /* spare: struct rcx keeps its layout (RF_ARENA, drivers/h8300/runfast.h) */
         } cal;
     } u;
 };
