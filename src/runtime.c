@@ -28,20 +28,9 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
     return k->vm.runmask ? vm_run(&k->vm, budget) : 0; /* no call when no task runs */
 }
 
-/* rt_ir_byte() is in src/ir.c. */
+/* rt_ir_byte() is in src/ir.c; rt_battery() and rt_button() are inline in src/runtime.h. */
 
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)
 {
     sensor_sample(&k->vm, input, raw10);
-}
-
-void rt_battery(struct rcx_brick *k, u16 millivolts)
-{
-    k->vm.battery_mv = millivolts;
-    ui_battery(k);
-}
-
-void rt_button(struct rcx_brick *k, u8 button, u8 down)
-{
-    ui_button(k, button, down);
 }

@@ -135,7 +135,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
     u8 flags = rcx_opflags[rcx_op_index(op)];
-    u8 c;
+    u8 *out = reply + 1, c; /* the reply after its opcode */
 
 #if RCX_SWAN
     if (op == RCX_SW_MSG_WORD && len >= 4)
@@ -152,7 +152,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     /* Each case returns the reply's length, its opcode included (0: no reply). */
     switch (c) {
     case D_MEMMAP:
-        return (u8)(1 + mem_memmap(b, reply + 1));
+        return (u8)(1 + mem_memmap(b, out));
     case D_DELETE_ALL_TASKS:
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
@@ -176,8 +176,8 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_BATTERY:
     case D_POLL: {
         u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
-        reply[1] = (u8)v;
-        reply[2] = (u8)(v >> 8);
+        out[0] = (u8)v;
+        out[1] = (u8)(v >> 8);
         return 3;
     }
     case D_UPLOAD_RAM: {
@@ -185,10 +185,10 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
         if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
             return 0;
-        return (u8)(1 + upload_ram(b, addr, cmd[3], reply + 1));
+        return (u8)(1 + upload_ram(b, addr, cmd[3], out));
     }
     case D_UPLOAD_DATALOG: {
-        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
+        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), out);
         return bytes < 0 ? 0 : (u8)(1 + bytes);
     }
     case D_UNLOCK_BRICK:
@@ -199,17 +199,17 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
             b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
             return 1;
         }
-        memcpy(reply + 1, versions, sizeof versions);
+        memcpy(out, versions, sizeof versions);
         return 1 + sizeof versions;
     case D_BEGIN_TASK:
     case D_BEGIN_SUB:
-        reply[1] = begin_download(b, cmd);
+        out[0] = begin_download(b, cmd);
         return 2;
     case D_CONTINUE_DL:
         /* A block shorter than its header announces is a truncated packet: no reply, like any other. */
         if (RCX_LE16(cmd + 3) > (u16)(len - 6))
             return 0;
-        reply[1] = continue_download(b, cmd);
+        out[0] = continue_download(b, cmd);
         return 2;
     case D_BEGIN_FIRMWARE:
     case D_UNLOCK_FIRMWARE:
@@ -225,6 +225,6 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
      * SetDatalog makes 1, when memory is short (reference-firmware.md). The byte is written whatever the class: the
      * reply's length decides whether it goes out. */
-    reply[1] = op == RCX_OP_SET_DATALOG && !b->log_size;
+    out[0] = op == RCX_OP_SET_DATALOG && !b->log_size;
     return (u8)(flags >> 5);
 }
