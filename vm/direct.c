@@ -83,7 +83,7 @@ static u8 begin_download(struct rcx *b, const u8 *cmd)
 /* 0x45: seq(2) len(2) data(len) checksum(1), already checked to be complete. Blocks are numbered 1, ..., n, 0. */
 static u8 continue_download(struct rcx *b, const u8 *cmd)
 {
-    u16 seq = RCX_LE16(cmd + 1), count = RCX_LE16(cmd + 3), *start = &b->obj_start[b->dl.obj];
+    u16 seq = RCX_LE16(cmd + 1), count = RCX_LE16(cmd + 3), *start, at;
     const u8 *p = cmd + 5, *end = p + count;
     u8 sum = 0;
 
@@ -99,13 +99,15 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
         if (seq != b->dl.expect)
             return DL_BLOCK_ERROR; /* out of order */
     }
-    if (count > (u16)(start[1] - start[0] - b->dl.filled))
+    start = &b->obj_start[b->dl.obj];
+    at = (u16)(start[0] + b->dl.filled);
+    if (count > (u16)(start[1] - at))
         return DL_BLOCK_ERROR;     /* more code than BeginOfTask/Sub announced */
-    memcpy(b->arena + start[0] + b->dl.filled, cmd + 5, count);
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
     b->dl.expect++;
-    if (seq == 0) {                /* the last block: the code may run from now on */
+    memcpy(b->arena + at, cmd + 5, count);
+    if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
 #if RCX_SWAN
         swan_download_done(b); /* the object's final size, and its slot's kind (vm/swan.c) */
@@ -195,7 +197,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_BOOT_MODE:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key))
             return 1;              /* a wrong key gets a bare acknowledgement */
-        if (c == D_BOOT_MODE) {
+        if (op == RCX_OP_BOOT_MODE) {
             b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
             return 1;
         }
