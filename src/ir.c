@@ -8,7 +8,6 @@
  * length comes from the opcode's low three bits (spec p. 5), for 0x45 from its own length field; a block longer
  * than the buffer is drained until the line falls silent (the host retries later).
  */
-#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
 
@@ -20,7 +19,6 @@ static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
 void ir_init(struct rcx_brick *k)
 {
-    memset(&k->ir, 0, sizeof k->ir);
     k->ir.range = 0xFF; /* applied at the first ir_poll() */
     k->ir.last_op = RCX_OP_MESSAGE;
 }

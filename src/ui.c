@@ -3,15 +3,14 @@
  * every command received (the IR layer sets vm.idle_reset, spec p. 35; so do PBAliveOrNot and PBPowerDownTime)
  * restarts the power-down timer.
  */
-#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
 
-/* Nothing idle yet, not switching off, no battery mark; and the double beep, which firm0328 plays when it starts
- * (its own request, not the ROM's: issue 15, observed on the emulated brick), as when the brick is switched on. */
+/* rt_init() has cleared the state: nothing idle yet, not switching off, no battery mark. What is left is the double
+ * beep, which firm0328 plays when it starts (its own request, not the ROM's: issue 15, observed on the emulated
+ * brick), as when the brick is switched on. */
 void ui_init(struct rcx_brick *k)
 {
-    memset(&k->ui, 0, sizeof k->ui);
     sound_ui(&k->vm, 1);
 }
 

@@ -22,7 +22,7 @@ struct rcx_ui {
     u8 battery_low;  /* the mark is on */
 };
 
-void ui_init(struct rcx_brick *k);
+void ui_init(struct rcx_brick *k); /* after rt_init() has cleared struct rcx_ui */
 void ui_button(struct rcx_brick *k, u8 button, u8 down);
 void ui_tick(struct rcx_brick *k);
 void ui_battery(struct rcx_brick *k); /* rcx.battery_mv was measured again: the low-battery mark */
