@@ -128,16 +128,14 @@ void ir_tick(struct rcx_brick *k)
     }
 }
 
-/* Byte `pos` of the framed packet. */
+/* Byte `pos` of the framed packet, counted as if it had the preamble (tx_start). */
 static u8 framed(const struct rcx_ir *ir, u16 pos)
 {
     u8 odd = 0, v;
 
-    if (ir->tx_pack & IR_PACK_PREAMBLE) {
-        if (pos < 3)
-            return preamble[pos];
-        pos -= 3;
-    }
+    if (pos < 3)
+        return preamble[pos];
+    pos -= 3;
     if (ir->tx_pack & IR_PACK_COMPLEMENT) {
         odd = (u8)(pos & 1);
         pos >>= 1;
@@ -158,14 +156,13 @@ static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
     while (len--)
         sum = (u8)(sum + *p++);
     ir->tx_sum = sum;
-    ir->tx_pos = 0;
+    /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
+    ir->tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
     if (pack & IR_PACK_COMPLEMENT)
         total = (u16)(2 * total + 2);
     else if (pack & IR_PACK_CHECKSUM)
         total++;
-    if (pack & IR_PACK_PREAMBLE)
-        total += 3;
-    ir->tx_total = total;
+    ir->tx_total = (u16)(total + 3);
 }
 
 static void execute(struct rcx_brick *k)
