@@ -131,31 +131,29 @@ void ir_tick(struct rcx_brick *k)
 /* Byte `pos` of the framed packet, counted as if it had the preamble (tx_start). */
 static u8 framed(const struct rcx_ir *ir, u16 pos)
 {
-    u8 odd = 0, v;
+    u8 flip = 0, v;
 
     if (pos < 3)
         return preamble[pos];
     pos -= 3;
     if (ir->tx_pack & IR_PACK_COMPLEMENT) {
-        odd = (u8)(pos & 1);
+        if (pos & 1)
+            flip = 0xFF;           /* the complement, after its byte */
         pos >>= 1;
     }
     v = pos < ir->tx_src_len ? ir->tx_src[pos] : ir->tx_sum;
-    return odd ? (u8)~v : v;
+    return (u8)(v ^ flip);
 }
 
 /* Start sending the `len` bytes at ir->tx_src, framed as ir->tx_pack says. Out of line, so that ir_poll() keeps
  * its registers. */
 static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
 {
-    const u8 *p = ir->tx_src;
-    u8 sum = 0, pack = ir->tx_pack;
+    const u8 *p;
+    u8 sum, pack = ir->tx_pack;
     u16 total = len;
 
     ir->tx_src_len = len;
-    while (len--)
-        sum = (u8)(sum + *p++);
-    ir->tx_sum = sum;
     /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
     ir->tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
     if (pack & IR_PACK_COMPLEMENT)
@@ -163,6 +161,9 @@ static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
     else if (pack & IR_PACK_CHECKSUM)
         total++;
     ir->tx_total = (u16)(total + 3);
+    for (p = ir->tx_src, sum = 0; len; len--)
+        sum = (u8)(sum + *p++);
+    ir->tx_sum = sum;
 }
 
 static void execute(struct rcx_brick *k)

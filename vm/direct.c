@@ -34,7 +34,6 @@ enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NO
  */
 static void release(struct rcx *b, u8 id)
 {
-    struct rcx_task *t = b->task;
     u8 n, obj;
 
     if (id >= RCX_SUBS) {
@@ -42,9 +41,12 @@ static void release(struct rcx *b, u8 id)
     } else {
         /* A task in its own body (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle
          * task changes nothing. */
-        for (n = 0; n < RCX_TASKS; n++, t++)
+        for (n = 0; n < RCX_TASKS; n++) {
+            const struct rcx_task *t = &b->task[n];
+
             if (t->sub == id || (t->has_ret && t->ret_sub == id))
                 sched_stop_task(b, n);
+        }
     }
     obj = rcx_obj_sub(b->prog, id);
     if (!(b->dl.active && b->dl.obj == obj))
