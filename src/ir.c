@@ -17,12 +17,6 @@ RCX_STATIC_ASSERT(block_reply_fits, IR_RX_MAX + 2 <= IR_BUF_SIZE); /* a 0x45 blo
 
 static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
-void ir_init(struct rcx_brick *k)
-{
-    k->ir.range = 0xFF; /* applied at the first ir_poll() */
-    k->ir.last_op = RCX_OP_MESSAGE;
-}
-
 /* Nonzero while a packet goes out. A tail call rather than `||`, which would keep its 0 or 1 across the call. */
 static u8 sending(struct rcx_brick *k)
 {

@@ -77,7 +77,9 @@ enum {
 #define IR_PACK_CHECKSUM 0x04   /* a checksum byte (always present with IR_PACK_COMPLEMENT) */
 #define IR_PACK_STANDARD 0x07
 
-void ir_init(struct rcx_brick *k); /* after rt_init() has cleared struct rcx_ir */
+/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll(), and the first packet is
+ * new. A macro: rt_init() is its one user. */
+#define ir_init(k) ((k)->ir.range = 0xFF, (k)->ir.last_op = RCX_OP_MESSAGE)
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */

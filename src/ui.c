@@ -6,14 +6,6 @@
 #include "runtime.h"
 #include "hal.h"
 
-/* rt_init() has cleared the state: nothing idle yet, not switching off, no battery mark. What is left is the double
- * beep, which firm0328 plays when it starts (its own request, not the ROM's: issue 15, observed on the emulated
- * brick), as when the brick is switched on. */
-void ui_init(struct rcx_brick *k)
-{
-    sound_ui(&k->vm, 1);
-}
-
 /* View steps from whatever is shown (a program's own view included, which drops out) to the watch, then through
  * inputs 1-3 and outputs A-C and back to the watch, as firm0328 does (reference-firmware.md). */
 static void next_view(struct rcx *b)
