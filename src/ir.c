@@ -123,41 +123,41 @@ void ir_tick(struct rcx_brick *k)
 }
 
 /* Byte `pos` of the framed packet, counted as if it had the preamble (tx_start). */
-static u8 framed(const struct rcx_ir *ir, u16 pos)
+static u8 framed(const struct rcx_brick *k, u16 pos)
 {
     u8 flip = 0, v;
 
     if (pos < 3)
         return preamble[pos];
     pos -= 3;
-    if (ir->tx_pack & IR_PACK_COMPLEMENT) {
+    if (k->ir.tx_pack & IR_PACK_COMPLEMENT) {
         if (pos & 1)
             flip = 0xFF;           /* the complement, after its byte */
         pos >>= 1;
     }
-    v = pos < ir->tx_src_len ? ir->tx_src[pos] : ir->tx_sum;
+    v = pos < k->ir.tx_src_len ? k->ir.tx_src[pos] : k->ir.tx_sum;
     return (u8)(v ^ flip);
 }
 
 /* Start sending the `len` bytes at ir->tx_src, framed as ir->tx_pack says. Out of line, so that ir_poll() keeps
  * its registers. */
-static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
+static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
     const u8 *p;
-    u8 sum, pack = ir->tx_pack;
+    u8 sum, pack = k->ir.tx_pack;
     u16 total = len;
 
-    ir->tx_src_len = len;
+    k->ir.tx_src_len = len;
     /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
-    ir->tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
+    k->ir.tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
     if (pack & IR_PACK_COMPLEMENT)
         total = (u16)(2 * total + 2);
     else if (pack & IR_PACK_CHECKSUM)
         total++;
-    ir->tx_total = (u16)(total + 3);
-    for (p = ir->tx_src, sum = 0; len; len--)
+    k->ir.tx_total = (u16)(total + 3);
+    for (p = k->ir.tx_src, sum = 0; len; len--)
         sum = (u8)(sum + *p++);
-    ir->tx_sum = sum;
+    k->ir.tx_sum = sum;
 }
 
 static void execute(struct rcx_brick *k)
@@ -180,7 +180,6 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    struct rcx_ir *ir;
     u8 n, len = 0;
 
     if (k->ir.range != k->vm.tx_range) {
@@ -212,16 +211,15 @@ void ir_poll(struct rcx_brick *k)
             display_ir_activity(&k->vm);
         }
         if (len)
-            tx_start(&k->ir, len);
+            tx_start(k, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (!sending(k) || hal_ir_busy(&k->vm))
         return;
-    ir = &k->ir;
     n = 0;
     do
-        ir->rx[n++] = framed(ir, ir->tx_pos++);
-    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);
-    ir->echo = (u16)(ir->echo + n);
-    hal_ir_send(&k->vm, ir->rx, n, ir->tx_mode);
+        k->ir.rx[n++] = framed(k, k->ir.tx_pos++);
+    while (n < IR_CHUNK && k->ir.tx_pos < k->ir.tx_total);
+    k->ir.echo = (u16)(k->ir.echo + n);
+    hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);
 }
