@@ -139,8 +139,8 @@ static u8 framed(const struct rcx_brick *k, u16 pos)
     return (u8)(v ^ flip);
 }
 
-/* Start sending the `len` bytes at ir->tx_src, framed as ir->tx_pack says. Out of line, so that ir_poll() keeps
- * its registers. */
+/* Start sending the `len` bytes at tx_src, framed as tx_pack says. Out of line, so that ir_poll() keeps its
+ * registers. */
 static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
     const u8 *p;

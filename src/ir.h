@@ -54,6 +54,8 @@ struct rcx_ir {
     u8 tx_pack;         /* IR_PACK_* below */
     u8 tx_mode;         /* HAL_IR_* */
     u8 tx_sum;
+    /* Positions in the framed packet, counted from the preamble's first byte even when it has none (tx_pos then
+     * starts at 3): the next byte, and the end. */
     u16 tx_pos;
     u16 tx_total;
     u16 echo;           /* own bytes not heard back yet */
