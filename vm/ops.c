@@ -7,51 +7,63 @@
 #include "sources.h"
 
 /* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `kind` is the
- * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart: a dense switch. */
+ * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart (a dense switch), or one of Swan's. */
+RCX_STATIC_ASSERT(arith_nibbles, ARITH_SET == RCX_OP_SET_VAR >> 4 && ARITH_SUM == RCX_OP_SUM_VAR >> 4
+                                 && ARITH_SUB == RCX_OP_SUB_VAR >> 4 && ARITH_DIV == RCX_OP_DIV_VAR >> 4
+                                 && ARITH_MUL == RCX_OP_MUL_VAR >> 4 && ARITH_SGN == RCX_OP_SGN_VAR >> 4
+                                 && ARITH_ABS == RCX_OP_ABS_VAR >> 4 && ARITH_AND == RCX_OP_AND_VAR >> 4
+                                 && ARITH_OR == RCX_OP_OR_VAR >> 4);
+#define IS_MOD(kind) (RCX_SWAN && (kind) == ARITH_MOD)
 #if !RCX_SWAN
 static
 #endif
 s16 ops_arith(u8 kind, s16 a, s16 v)
 {
+#if RCX_SWAN
+    u16 n;
+#endif
+
     switch (kind) {
-    case RCX_OP_SET_VAR >> 4: return v;
-    case RCX_OP_SUM_VAR >> 4: return (s16)(u16)((u16)a + (u16)v);
-    case RCX_OP_SUB_VAR >> 4: return (s16)(u16)((u16)a - (u16)v);
-    case RCX_OP_MUL_VAR >> 4: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
-    case RCX_OP_DIV_VAR >> 4:
+    case ARITH_SET: return v;
+#if RCX_SWAN
+    case ARITH_NEG:
+        a = 0;                                   /* -v = 0 - v */
+#endif
+        /* fall through */
+    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
+    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
+    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
+#if RCX_SWAN
+    case ARITH_MOD:
+#endif
+    case ARITH_DIV:
         if (v == 0)
             return a;                            /* division by zero leaves the variable */
-        if (v == -1)
-            return (s16)(u16)(0u - (u16)a);      /* -32768 / -1 = -32768, without the overflow trap */
-        return (s16)(a / v);                     /* C99 truncates toward zero, as firm0328 */
-    case RCX_OP_SGN_VAR >> 4: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
-    case RCX_OP_ABS_VAR >> 4: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
-    case RCX_OP_AND_VAR >> 4: return (s16)(a & v);
+        if (v == -1)                             /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
+            return (s16)(IS_MOD(kind) ? 0 : (u16)(0u - (u16)a));
+        return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
+                                                           * of the dividend */
+    case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+    case ARITH_ABS: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
+    case ARITH_AND: return (s16)(a & v);
 #if RCX_SWAN
-    case RCX_OP_OR_VAR >> 4:  return (s16)(a | v);
+    case ARITH_OR:   return (s16)(a | v);
     /* Swan's (swan-target.md 4) */
     case ARITH_COMP:          return (s16)~v;
-    case ARITH_MOD:
-        if (v == 0)
-            return a;
-        if (v == -1)
-            return 0;                            /* -32768 % -1, without the trap */
-        return (s16)(a % v);                     /* the sign of the dividend */
     case ARITH_XOR:           return (s16)(a ^ v);
-    case ARITH_NEG:           return (s16)(u16)(0u - (u16)v);
     case ARITH_SHR:
         v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
         /* fall through */
-    case ARITH_SHL:
-        if (v < 0) {                             /* right, arithmetic: 16 or more leaves the sign */
-            u16 n = (u16)(0u - (u16)v);
-            return (s16)(a >> (n >= 16 ? 15 : n));
-        }
-        return v >= 16 ? 0 : (s16)(u16)((u16)a << v);
-    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15 */
-        if ((u16)v >= 16)
-            return a;
-        return (s16)(kind == ARITH_BSET ? (u16)a | (u16)(1u << v) : (u16)a & (u16)~(1u << v));
+    case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
+        n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
+        if (n > 16)
+            n = 16;
+        for (; n; n--)
+            a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
+        return a;
+    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15; any other v: mask 0 */
+        v = ops_arith(ARITH_SHL, 1, v);
+        return (s16)(kind == ARITH_BSET ? a | v : a & ~v);
 #else
     default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
 #endif

@@ -170,18 +170,8 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes
 
 /* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
 u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
-/* a op v for `kind`: the high nibble of SetVar..OrVar (1-9), or one of Swan's below */
-#define ARITH_SET (RCX_OP_SET_VAR >> 4)
-#define ARITH_COMP 10
-#define ARITH_MOD 11
-#define ARITH_XOR 12
-#define ARITH_SHL 13
-#define ARITH_SHR 14
-#define ARITH_NEG 15
-#define ARITH_BSET 16
-#define ARITH_BCLR 17
 #if RCX_SWAN
-s16 ops_arith(u8 kind, s16 a, s16 v); /* static (inlined) in a build without Swan's programs */
+s16 ops_arith(u8 kind, s16 a, s16 v); /* a op v, kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
 #endif
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
 /* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */
