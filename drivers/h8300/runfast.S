@@ -163,9 +163,7 @@ dispatch:
 	beq	sjump
 #if RCX_SWAN
 	cmp.b	#RF_SW_SUM_GB,r4l	; Swan's x++ (sumgb g, 1) before RCX 2.0's: as fast as SumVar's
-	bne	1f
-	.word	0x5A00,k8add		; jmp @k8add
-1:
+	beq	gform
 #endif
 	cmp.b	#RF_OP_SUM_VAR,r4l
 	beq	var
@@ -173,10 +171,33 @@ dispatch:
 	beq	var
 	cmp.b	#RF_OP_SUB_VAR,r4l
 	beq	var
-#if RCX_SWAN
-	.word	0x5A00,swan		; jmp @swan: Swan's global forms, or slow
-#else
+#if !RCX_SWAN
 	bra	slow			; any other
+#else
+; Swan's assignments and sums on a global, as SetVar/SumVar/SubVar: 0x2B 0x48 0x49 op g k8, 0x2C op g H L (a word, high
+; byte first), 0x2D 0xC8 0xC9 op g T v8 (a constant or a global source). r4l becomes that opcode for apply, r0 the
+; global's offset, r3 the value; r1 moves on only once the instruction is known to end before the code does. Every
+; form is checked for four bytes and one more byte code after them (a k8 form with exactly one byte after it runs
+; through run_slow(), as any other opcode that comes here). 0x48 (x++) is decoded here, the others at decode.
+gform:	mov.w	r1,r3
+	adds	#2,r3
+	adds	#2,r3
+	cmp.w	r2,r3
+	bcc	sslow
+	mov.b	@(1,r1),r0l		; g
+	mov.b	@(2,r1),r3l		; k8, the word's high byte, or T
+	sub.b	r3h,r3h
+	cmp.b	#RF_SW_SUM_GB,r4l
+	bne	gdec
+	mov.b	#RF_OP_SUM_VAR,r4l
+	adds	#2,r1
+	adds	#1,r1
+gref:	mov.b	#0,r0h			; the global at @(RF_GLOBAL,r0)
+	add.w	r0,r0
+	add.w	r6,r0
+	bra	apply
+gdec:	.word	0x5A00,decode		; jmp @decode
+sslow:	.word	0x5A00,slow		; jmp @slow
 #endif
 
 sjump:	mov.w	r1,r3
@@ -267,74 +288,41 @@ over:	inc	r4l			; b->rr: the task after this one
 	rts
 
 #if RCX_SWAN
-; Swan's assignments and sums on a global (0x2B 0x2C 0x2D, 0x48 0x49, 0xC8 0xC9: = += -= with a byte, a word high
-; byte first, or a constant or global source), as SetVar/SumVar/SubVar: r4l becomes that opcode for apply, r0 the
-; global's offset, r3 the value; r1 moves on only once the instruction is known to end before the code does.
-swan:	cmp.b	#RF_SW_SET_GB,r4l
-	beq	k8set
-	cmp.b	#RF_SW_SUB_GB,r4l
-	beq	k8sub
-	cmp.b	#RF_SW_SUM_G,r4l
-	beq	srcadd
-	cmp.b	#RF_SW_SET_G,r4l
-	beq	srcset
-	cmp.b	#RF_SW_SUB_G,r4l
-	beq	srcsub
-	cmp.b	#RF_SW_SET_GW,r4l
-	beq	word
-	bra	sslow			; any other
-k8set:	mov.b	#RF_OP_SET_VAR,r4l
-	bra	k8
-k8sub:	mov.b	#RF_OP_SUB_VAR,r4l
-	bra	k8
-k8add:	mov.b	#RF_OP_SUM_VAR,r4l
-k8:	mov.b	@(1,r1),r0l		; g
-	mov.w	r1,r3			; op g k8: 3 bytes, and one more byte code after them
-	adds	#2,r3
-	adds	#1,r3
-	cmp.w	r2,r3
-	bcc	sslow
-	mov.b	@(2,r1),r3l		; byte constants are unsigned
-	mov.b	#0,r3h
-	adds	#2,r1
-	adds	#1,r1
-	bra	gref
-sslow:	.word	0x5A00,slow		; jmp @slow, within reach of the branches around it
-word:	mov.b	#RF_OP_SET_VAR,r4l	; setgw g H L: 4 bytes
-	mov.b	@(1,r1),r0l
-	mov.w	r1,r3
-	adds	#2,r3
-	adds	#2,r3
-	cmp.w	r2,r3
-	bcc	sslow
-	mov.b	@(2,r1),r3h
+; The rest of Swan's global forms (gform): 0x49 0xC8 0xC9 and 0x2B-0x2D, and any other opcode, which goes to run_slow().
+decode:	mov.b	r4l,r0h
+	and.b	#0x7E,r0h
+	cmp.b	#RF_SW_SUM_GB,r0h	; 0x48 0x49 0xC8 0xC9: the low bit subtracts, bit 7 a source
+	bne	sets
+	bld	#0,r4l
+	mov.b	r4l,r0h
+	mov.b	#RF_OP_SUM_VAR,r4l
+	bst	#4,r4l			; SumVar 0x24, SubVar 0x34
+	btst	#7,r0h
+	beq	k8
+	bra	src
+sets:	mov.b	r4l,r0h			; 0x2B 0x2C 0x2D: SetVar
+	mov.b	#RF_OP_SET_VAR,r4l
+	cmp.b	#RF_SW_SET_GB,r0h
+	beq	k8
+	cmp.b	#RF_SW_SET_G,r0h
+	beq	src
+	cmp.b	#RF_SW_SET_GW,r0h
+	bne	dslow
+	mov.b	r3l,r3h			; the word, high byte first
 	mov.b	@(3,r1),r3l
 	bra	gnext
-srcset:	mov.b	#RF_OP_SET_VAR,r4l
-	bra	src
-srcsub:	mov.b	#RF_OP_SUB_VAR,r4l
-	bra	src
-srcadd:	mov.b	#RF_OP_SUM_VAR,r4l
-src:	mov.b	@(1,r1),r0l		; op g T v8: 4 bytes; T a constant or a global, else run_slow()
-	mov.w	r1,r3
-	adds	#2,r3
-	adds	#2,r3
-	cmp.w	r2,r3
-	bcc	sslow
+src:	mov.b	r3l,r0h			; T, and v8 (r3h is 0)
 	mov.b	@(3,r1),r3l
-	mov.b	#0,r3h
-	mov.b	@(2,r1),r0h
 	cmp.b	#RF_SRC_CONST,r0h
 	beq	gnext
 	cmp.b	#RF_SRC_GLOBAL,r0h
-	bne	sslow
+	bne	dslow
 	add.w	r3,r3
 	add.w	r6,r3
 	mov.w	@(RF_GLOBAL,r3),r3
-gnext:	adds	#2,r1
-	adds	#2,r1
-gref:	mov.b	#0,r0h			; the global at @(RF_GLOBAL,r0)
-	add.w	r0,r0
-	add.w	r6,r0
-	.word	0x5A00,apply		; jmp @apply
+gnext:	adds	#1,r1			; four bytes
+k8:	adds	#2,r1			; three bytes
+	adds	#1,r1
+	.word	0x5A00,gref		; jmp @gref
+dslow:	.word	0x5A00,slow		; jmp @slow
 #endif
