@@ -88,11 +88,11 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
-        len = (u8)(sw->params & 7);
+        len = rcx_swan_params(sw);
         if ((u16)(size - pc) <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
-        if (sw->kind == SW_WAIT_MS) {
+        if (rcx_swan_kind(sw) == SW_WAIT_MS) {
             ms = 1;
             goto wait;
         }

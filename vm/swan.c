@@ -43,7 +43,7 @@ static __attribute__((noinline)) void clear_all(struct rcx *b, u8 f)
 
 u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
 {
-    u8 kind = r->kind, f, i;
+    u8 kind = rcx_swan_kind(r), f, i;
     s16 v, *g;
 
     if (kind >= SW_SOURCE) {           /* op Td d16 Ts s16: the operation is the row's, or the family's */
