@@ -41,9 +41,38 @@ static __attribute__((noinline)) void clear_all(struct rcx *b, u8 f)
         b->log_size = b->log_count = 0;
 }
 
+/* Push (0xE3) and pop (0x01 n) change the stack's depth; overflow and underflow are bad input: the task stops. */
+static u8 stack(struct rcx_task *t, const u8 *ins, u8 kind)
+{
+    s16 depth = (s16)(t->stack + (kind == SW_PUSH ? 1 : -(s16)ins[1]));
+
+    if ((u16)depth > RCX_SWAN_STACK)
+        return 1;
+    t->stack = (u8)depth;
+    return 0;
+}
+
+/* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
+static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
+{
+    u8 m = ins[1];
+    s16 v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+
+    if (kind >= SW_SEND_PARAM) {
+        m = (u8)ops_source8(b, t, ins);
+        v = ops_source(b, t, ins + 2);
+        if (kind == SW_SEND_PARAM) {
+            remote_send_message_param(b, m, v);
+            return;
+        }
+    }
+    b->msg_param = v;                  /* first, so that the events the message raises find it */
+    ops_set_message(b, m);
+}
+
 u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
 {
-    u8 kind = rcx_swan_kind(r), f, i;
+    u8 kind = rcx_swan_kind(r), f;
     s16 v, *g;
 
     if (kind >= SW_SOURCE) {           /* op Td d16 Ts s16: the operation is the row's, or the family's */
@@ -64,30 +93,12 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         *g = ops_arith(ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET, *g, v); /* 0x2B-0x2D: = */
         return 0;
     }
-    if (kind == SW_CLEAR_ALL) {
+    if (kind == SW_CLEAR_ALL)
         clear_all(b, ins[1]);
-        return 0;
-    }
-    if (kind <= SW_POP) {              /* the stack's depth; overflow and underflow are bad input: the task stops */
-        v = (s16)(t->stack + (kind == SW_PUSH ? 1 : -(s16)ins[1]));
-        if ((u16)v > RCX_SWAN_STACK)
-            return 1;
-        t->stack = (u8)v;
-        return 0;
-    }
-    /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 */
-    i = ins[1];
-    v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
-    if (kind >= SW_SEND_PARAM) {
-        i = (u8)ops_source8(b, t, ins);
-        v = ops_source(b, t, ins + 2);
-        if (kind == SW_SEND_PARAM) {
-            remote_send_message_param(b, i, v);
-            return 0;
-        }
-    }
-    b->msg_param = v;                  /* first, so that the events the message raises find it */
-    ops_set_message(b, i);
+    else if (kind <= SW_POP)
+        return stack(t, ins, kind);
+    else
+        message(b, t, ins, kind);
     return 0;
 }
 
