@@ -109,32 +109,28 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
  */
 RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
-static __attribute__((noinline)) u8 swan_code(const u8 *p, const u8 *end)
+/* 1 when the code of a slot (its objects start at `at`) has a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not)
+ * with source 43 or 44; each object is walked from its start, instruction by instruction. */
+static u8 swan_code(const u8 *arena, const u16 *at)
 {
+    const u16 *last = at + RCX_SLOT_OBJS;
+    const u8 *p, *end;
     u8 op;
 
-    for (; p < end; p += 1 + rcx_op_params((u8)(op & ~RCX_TOGGLE))) {
-        op = *p;
-        /* a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not) with source 43 or 44 */
-        if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
-            return 1;
-    }
+    for (; at != last; at++)
+        for (p = arena + at[0], end = arena + at[1]; p < end; p += 1 + rcx_op_params((u8)(op & ~RCX_TOGGLE))) {
+            op = *p;
+            if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
+                return 1;
+        }
     return 0;
 }
 
 void swan_download_done(struct rcx *b)
 {
-    u8 obj = b->dl.obj, *swan = b->swan, k = 0;
-    const u16 *at = b->obj_start, *last;
+    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS); /* one divxu */
 
-    mem_resize(b, obj, b->dl.filled);
-    while (obj >= RCX_SLOT_OBJS) {     /* the slot's first object and its flag, without a division */
-        obj = (u8)(obj - RCX_SLOT_OBJS);
-        at += RCX_SLOT_OBJS;
-        swan++;
-    }
-    for (last = at + RCX_SLOT_OBJS; at != last; at++)
-        k |= swan_code(b->arena + at[0], b->arena + at[1]);
-    *swan = k;
+    mem_resize(b, b->dl.obj, b->dl.filled);
+    b->swan[slot] = swan_code(b->arena, &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]);
 }
 #endif
