@@ -1,8 +1,8 @@
 /*
  * The interpreter: byte codes of the running tasks in round-robin order, one per task and pass of the scheduler.
  *
- * Control flow lives here (jumps, loops, tests, subroutines, waits, monitoring and access-control regions);
- * everything else is shared with direct commands in ops.c. Code is untrusted: an instruction that runs past the
+ * The byte codes that jump or end the code live here (jumps, loop checks, tests, entering monitoring and
+ * access-control regions, the end of a subroutine); every other one runs in ops.c, with the direct commands. Code is untrusted: an instruction that runs past the
  * end of its code object, or a jump that lands outside it, stops the task instead of reading foreign memory.
  */
 #include "rcx.h"
@@ -27,7 +27,7 @@ static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
 
 /*
  * The program-only byte codes run_slow() handles itself, found by a search (a switch on the sparse opcodes would
- * cost the H8/300 a tree of long branches), the commonest first. The first twelve carry a distance, in pairs of a
+ * cost the H8/300 a tree of long branches), the commonest first. All but the last carry a distance, in pairs of a
  * short (even index) and a long form; dist_at gives its field's offset per pair. Each distance counts from the first
  * byte of its own field (spec p. 11):
  *   0-1   forward unsigned 8 bits, or signed 16 bits
@@ -36,7 +36,6 @@ static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
  */
 #define OUTSIDE 0xFFFFu /* negative as an s16, unlike any offset in a code object: the one test for "outside" */
 RCX_STATIC_ASSERT(offsets_positive, RCX_ARENA_SIZE < 0x8000u);
-RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
 #define NOT_AN_OP 0x08 /* has the toggle bit: no opcode reaches the search with it */
 static const u8 control[] = {
     RCX_OP_SCHECK_DO, RCX_OP_LCHECK_DO,
@@ -45,11 +44,10 @@ static const u8 control[] = {
     RCX_OP_SDEC_JUMP_LTZ, RCX_OP_LDEC_JUMP_LTZ,
     RCX_OP_SENTER_EVENT, RCX_OP_LENTER_EVENT,
     NOT_AN_OP, RCX_OP_ENTER_ACCESS,
-    RCX_OP_SET_LOOP, RCX_OP_WAIT, RCX_OP_GOSUB, RCX_OP_END_OF_SUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
+    RCX_OP_END_OF_SUB,
 };
 static const u8 dist_at[6] = { 6, 1, 1, 2, 4, 2 };
-enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_ACCESS = 11, C_SET_LOOP = 12, C_WAIT,
-       C_GOSUB, C_END_OF_SUB, C_EXIT_EVENT, C_EXIT_ACCESS };
+enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_ACCESS = 11, C_END_OF_SUB };
 
 /* Where the code task n executes starts: its code object's entry in b->obj_start (the next entry is its end). */
 #define OBJECT_OF(b, t, n) \
@@ -74,9 +72,6 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     const struct rcx_swan_row *sw;
 #endif
     u8 op, i, jump = 0, len, flags;
-#if RCX_SWAN
-    u8 ms = 0;                         /* the wait is WaitMS's */
-#endif
     s16 value;
     s16 *var;
 
@@ -92,10 +87,6 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         if ((u16)(size - pc) <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
-        if (rcx_swan_kind(sw) == SW_WAIT_MS) {
-            ms = 1;
-            goto wait;
-        }
         if (!swan_exec(b, t, ins, sw))
             return;
         goto stop;
@@ -114,7 +105,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     if (!((flags ^ (RCX_PROGRAM << 3)) & (3 << 3))) /* program-only: bits 3-4 of the flags, in place */
         for (i = 0; i < sizeof control && control[i] != op; i++)
             ;
-    if (i < C_SET_LOOP) {
+    if (i < C_END_OF_SUB) {
         /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
          * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
          * (none reaches 0x10000). Only CheckLoop's unsigned 16 bits could wrap around into the code: capped. */
@@ -182,52 +173,11 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         jump = !(relation[(u8)(ins[1] >> 6)] & holds);
         break;
     }
-    case C_SET_LOOP:
-        /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
-        if (t->loop_depth < RCX_LOOP_LEVELS) {
-            value = ops_source8(b, t, ins);
-            t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
-        }
-        break;
-    case C_GOSUB:
-        if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
-            break;                     /* calling an empty subroutine does nothing */
-        /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
-        t->has_ret = 1;
-        t->ret_sub = t->sub;
-        t->ret_pc = t->pc;
-        t->sub = ins[1];
-        t->pc = 0;
-        break;
     case C_END_OF_SUB:
         /* In a task body there is no return address. */
         if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
             break;
         goto stop;
-    case C_WAIT:
-#if RCX_SWAN
-    wait:                              /* and Swan's WaitMS (ms = 1) */
-#endif
-        value = ops_source(b, t, ins);
-        if (value <= 0)
-            break;                     /* negative: ignored (spec p. 67); zero: no wait */
-        /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
-#if RCX_SWAN
-        t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
-        t->wait_ms = ms;
-        b->waiting |= (u8)(ms + 1);    /* WAIT_MS or WAIT_10MS */
-#else
-        t->wake = (u16)(b->ticks10 + (u16)value);
-        b->waiting = WAIT_10MS;
-#endif
-        sched_set_state(b, t, RCX_TASK_WAITING);
-        break;
-    case C_EXIT_EVENT:
-        events_monitor_exit(b, t);
-        break;
-    case C_EXIT_ACCESS:
-        access_exit(b, t);
-        break;
     default:
         if ((flags >> 3) & RCX_PROGRAM)
             ops_exec(b, t, ins);

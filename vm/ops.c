@@ -1,10 +1,11 @@
 /*
- * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the two
- * program-only ones that do not steer control flow. Operands were length-checked by the caller; every index and
+ * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the
+ * program-only ones that do not jump (vm/interp.c runs those). Operands were length-checked by the caller; every index and
  * value is range-checked here, and an out-of-range operand makes the instruction do nothing.
  */
 #include "rcx.h"
 #include "sources.h"
+#include "access.h"
 
 /* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `kind` is the
  * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart (a dense switch), or one of Swan's. */
@@ -281,6 +282,51 @@ OP(op_priority)
         t->priority = ins[1];
     (void)b;
 }
+/* Wait, and Swan's WaitMS (vm/swan.c): a task that waits costs nothing until vm_tick() wakes it. Waits run on the
+ * 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
+RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
+void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
+{
+    s16 value = ops_source(b, t, ins);
+#if RCX_SWAN
+    u8 ms = ins[0] == RCX_SW_WAIT_MS;
+#endif
+
+    if (value <= 0)
+        return;                        /* negative: ignored (spec p. 67); zero: no wait */
+#if RCX_SWAN
+    t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
+    t->wait_ms = ms;
+    b->waiting |= (u8)(ms + 1);        /* WAIT_MS or WAIT_10MS */
+#else
+    t->wake = (u16)(b->ticks10 + (u16)value);
+    b->waiting = WAIT_10MS;
+#endif
+    sched_set_state(b, t, RCX_TASK_WAITING);
+}
+OP(op_set_loop)
+{
+    s16 value;
+    /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
+    if (t->loop_depth < RCX_LOOP_LEVELS) {
+        value = ops_source8(b, t, ins);
+        t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
+    }
+}
+OP(op_gosub)
+{
+    if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
+        return;                        /* calling an empty subroutine does nothing */
+    /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
+    t->has_ret = 1;
+    t->ret_sub = t->sub;
+    t->ret_pc = t->pc;
+    t->sub = ins[1];
+    t->pc = 0;
+}
+/* ExitEventCheck (0xB0), ExitAccessControl (0xA0): bit 4 tells them apart */
+RCX_STATIC_ASSERT(exit_ops, (RCX_OP_EXIT_EVENT & 0x10) && !(RCX_OP_EXIT_ACCESS & 0x10));
+OP(op_exit) { access_input(b, t, ins[0] & 0x10 ? ACCESS_IN_EXIT_EV : ACCESS_IN_EXIT_AC); }
 OP(op_send_message)
 {
     if (t)
@@ -299,7 +345,7 @@ static const u8 op_codes[] = {
     RCX_OP_CLEAR_COUNTER, RCX_OP_MESSAGE, RCX_OP_SET_WATCH, RCX_OP_SET_SENSOR_TYPE, RCX_OP_SET_SENSOR_MODE,
     RCX_OP_SET_DATALOG, RCX_OP_DATALOG_NEXT, RCX_OP_SEND_UART, RCX_OP_DIRECT_EVENT, RCX_OP_SELECT_DISPLAY,
     RCX_OP_VIEW_SOURCE, RCX_OP_SET_EVENT, RCX_OP_CALIBRATE_EVENT, RCX_OP_SET_SOURCE, RCX_OP_SET_PRIORITY,
-    RCX_OP_SEND_MESSAGE,
+    RCX_OP_SEND_MESSAGE, RCX_OP_WAIT, RCX_OP_SET_LOOP, RCX_OP_GOSUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
 };
 static op_fn *const op_fns[] = {
     ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
@@ -312,7 +358,7 @@ static op_fn *const op_fns[] = {
     op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,
     op_datalog, op_log, op_uart, op_event, op_view,
     op_user_view, op_set_event, op_calibrate, op_set_source, op_priority,
-    op_send_message,
+    op_send_message, ops_wait, op_set_loop, op_gosub, op_exit, op_exit,
 };
 RCX_STATIC_ASSERT(op_rows_match, sizeof op_codes == sizeof op_fns / sizeof op_fns[0]);
 

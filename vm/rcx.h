@@ -180,6 +180,7 @@ void swan_download_done(struct rcx *b);
 void swan_power(struct rcx *b, u8 src, u8 motor, s16 value); /* sources 5, 16, 32 written (sources.c) */ /* the last block came: the object's size, then its slot's kind */
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
+void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's WaitMS */
 /* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */

@@ -93,7 +93,9 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         *g = ops_arith(ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET, *g, v); /* 0x2B-0x2D: = */
         return 0;
     }
-    if (kind == SW_CLEAR_ALL)
+    if (kind == SW_WAIT_MS)
+        ops_wait(b, t, ins);
+    else if (kind == SW_CLEAR_ALL)
         clear_all(b, ins[1]);
     else if (kind <= SW_POP)
         return stack(t, ins, kind);
