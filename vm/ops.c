@@ -336,7 +336,7 @@ OP(op_send_message)
 /* Opcodes and their handlers, in two parallel arrays (3 bytes a row on the brick). */
 static const u8 op_codes[] = {
     RCX_OP_SUM_VAR, RCX_OP_SET_VAR, RCX_OP_SUB_VAR, RCX_OP_MUL_VAR, RCX_OP_DIV_VAR, RCX_OP_SGN_VAR,
-    RCX_OP_ABS_VAR, RCX_OP_AND_VAR, RCX_OP_OR_VAR,
+    RCX_OP_ABS_VAR, RCX_OP_AND_VAR, RCX_OP_OR_VAR, RCX_OP_WAIT,
     RCX_OP_PING, RCX_OP_STOP_ALL_TASKS, RCX_OP_TURN_OFF, RCX_OP_CLEAR_SOUND, RCX_OP_CLEAR_MESSAGE, RCX_OP_MUTE,
     RCX_OP_UNMUTE, RCX_OP_CLEAR_ALL_EVENTS, RCX_OP_ON_OFF_FLOAT, RCX_OP_CONNECT_DISCONNECT, RCX_OP_SET_DIRECTION,
     RCX_OP_SET_GLOBAL_DIR, RCX_OP_SET_POWER, RCX_OP_SET_MAX_POWER, RCX_OP_TX_POWER, RCX_OP_PLAY_SYSTEM_SOUND,
@@ -345,11 +345,11 @@ static const u8 op_codes[] = {
     RCX_OP_CLEAR_COUNTER, RCX_OP_MESSAGE, RCX_OP_SET_WATCH, RCX_OP_SET_SENSOR_TYPE, RCX_OP_SET_SENSOR_MODE,
     RCX_OP_SET_DATALOG, RCX_OP_DATALOG_NEXT, RCX_OP_SEND_UART, RCX_OP_DIRECT_EVENT, RCX_OP_SELECT_DISPLAY,
     RCX_OP_VIEW_SOURCE, RCX_OP_SET_EVENT, RCX_OP_CALIBRATE_EVENT, RCX_OP_SET_SOURCE, RCX_OP_SET_PRIORITY,
-    RCX_OP_SEND_MESSAGE, RCX_OP_WAIT, RCX_OP_SET_LOOP, RCX_OP_GOSUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
+    RCX_OP_SEND_MESSAGE, RCX_OP_SET_LOOP, RCX_OP_GOSUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
 };
 static op_fn *const op_fns[] = {
     ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
-    ops_var, ops_var, ops_var,
+    ops_var, ops_var, ops_var, ops_wait,
     op_ping, op_stop_all, op_turn_off, op_clear_sound, op_clear_message, op_mute,
     op_mute, op_clear_events, op_motors, op_motors, op_motors,
     op_motors, set_power, set_power, op_tx_power, op_system_sound,
@@ -358,19 +358,18 @@ static op_fn *const op_fns[] = {
     op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,
     op_datalog, op_log, op_uart, op_event, op_view,
     op_user_view, op_set_event, op_calibrate, op_set_source, op_priority,
-    op_send_message, ops_wait, op_set_loop, op_gosub, op_exit, op_exit,
+    op_send_message, op_set_loop, op_gosub, op_exit, op_exit,
 };
 RCX_STATIC_ASSERT(op_rows_match, sizeof op_codes == sizeof op_fns / sizeof op_fns[0]);
 
-u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
+void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     u8 op = (u8)(ins[0] & ~RCX_TOGGLE), i;
 
     for (i = 0; i < sizeof op_codes; i++) {
         if (op_codes[i] == op) {
             op_fns[i](b, t, ins);
-            return 1;
+            return;
         }
     }
-    return 0;
 }

@@ -168,8 +168,9 @@ void datalog_set(struct rcx *b, u16 entries);
 void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index);
 s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes written, -1 when refused */
 
-/* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
-u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
+/* Instructions shared by programs and direct commands, and the program's that do not jump (vm/ops.c); any other
+ * opcode does nothing. */
+void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
 #if RCX_SWAN
 s16 ops_arith(u8 kind, s16 a, s16 v); /* a op v, kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
 #endif
