@@ -118,13 +118,6 @@ s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins)
     return source_get(b, t, ins[1], RCX_LE16(ins + 2));
 }
 
-#if RCX_SWAN
-void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value)
-{
-    source_set(b, t, ins[1], RCX_LE16(ins + 2), value);
-}
-#endif
-
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins)
 {
     return source_get(b, t, ins[1], ins[2]);

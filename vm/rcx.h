@@ -185,6 +185,5 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's
 /* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
-void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value); /* into that source, if writable */
 
 #endif

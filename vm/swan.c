@@ -80,7 +80,7 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         f = (u8)(kind - SW_SOURCE);
         if (!f)
             f = arith_of[ins[0] & 7];
-        ops_store(b, t, ins, ops_arith(f, ops_source(b, t, ins), v));
+        source_set(b, t, ins[1], RCX_LE16(ins + 2), ops_arith(f, ops_source(b, t, ins), v));
         return 0;
     }
     if (kind >= SW_K8) {               /* op g k8 / op g H L / op g T v8 */
