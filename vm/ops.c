@@ -28,8 +28,9 @@ s16 ops_arith(u8 kind, s16 a, s16 v)
     case ARITH_SET: return v;
 #if RCX_SWAN
     case ARITH_NEG:
-        a = 0;                                   /* -v = 0 - v */
 #endif
+    negate:
+        a = 0;                                   /* -v = 0 - v */
         /* fall through */
     case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
     case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
@@ -40,12 +41,22 @@ s16 ops_arith(u8 kind, s16 a, s16 v)
     case ARITH_DIV:
         if (v == 0)
             return a;                            /* division by zero leaves the variable */
-        if (v == -1)                             /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
-            return (s16)(IS_MOD(kind) ? 0 : (u16)(0u - (u16)a));
+        if (v == -1) {                           /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
+            if (IS_MOD(kind))
+                return 0;
+            v = a;
+            goto negate;
+        }
         return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
                                                            * of the dividend */
     case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
-    case ARITH_ABS: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
+    case ARITH_ABS:
+        if (v < 0) {
+            v = (s16)(u16)(0u - (u16)v);
+            if (v < 0)
+                v = 32767;                       /* abs(-32768) */
+        }
+        return v;
     case ARITH_AND: return (s16)(a & v);
 #if RCX_SWAN
     case ARITH_OR:   return (s16)(a | v);
