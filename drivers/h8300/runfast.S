@@ -289,26 +289,24 @@ over:	inc	r4l			; b->rr: the task after this one
 
 #if RCX_SWAN
 ; The rest of Swan's global forms (gform): 0x49 0xC8 0xC9 and 0x2B-0x2D, and any other opcode, which goes to run_slow().
-decode:	mov.b	r4l,r0h
-	and.b	#0x7E,r0h
-	cmp.b	#RF_SW_SUM_GB,r0h	; 0x48 0x49 0xC8 0xC9: the low bit subtracts, bit 7 a source
-	bne	sets
-	bld	#0,r4l
-	mov.b	r4l,r0h
-	mov.b	#RF_OP_SUM_VAR,r4l
-	bst	#4,r4l			; SumVar 0x24, SubVar 0x34
-	btst	#7,r0h
-	beq	k8
-	bra	src
-sets:	mov.b	r4l,r0h			; 0x2B 0x2C 0x2D: SetVar
-	mov.b	#RF_OP_SET_VAR,r4l
+decode:	mov.b	r4l,r0h			; the opcode
+	mov.b	#RF_OP_SET_VAR,r4l	; 0x2B 0x2C 0x2D: SetVar
 	cmp.b	#RF_SW_SET_GB,r0h
 	beq	k8
 	cmp.b	#RF_SW_SET_G,r0h
 	beq	src
 	cmp.b	#RF_SW_SET_GW,r0h
-	bne	dslow
-	mov.b	r3l,r3h			; the word, high byte first
+	beq	word
+	mov.b	#RF_OP_SUM_VAR,r4l	; 0x49 0xC8 0xC9: the low bit subtracts (SubVar 0x34 is SumVar 0x24 + 0x10),
+	bld	#0,r0h			; bit 7 takes a source
+	bst	#4,r4l
+	bclr	#0,r0h
+	cmp.b	#RF_SW_SUM_GB,r0h
+	beq	k8
+	cmp.b	#RF_SW_SUM_G,r0h
+	beq	src
+dslow:	.word	0x5A00,slow		; jmp @slow
+word:	mov.b	r3l,r3h			; the word, high byte first
 	mov.b	@(3,r1),r3l
 	bra	gnext
 src:	mov.b	r3l,r0h			; T, and v8 (r3h is 0)
@@ -324,5 +322,4 @@ gnext:	adds	#1,r1			; four bytes
 k8:	adds	#2,r1			; three bytes
 	adds	#1,r1
 	.word	0x5A00,gref		; jmp @gref
-dslow:	.word	0x5A00,slow		; jmp @slow
 #endif
