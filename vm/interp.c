@@ -54,18 +54,17 @@ enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_A
     (&(b)->obj_start[(u8)((b)->prog * RCX_SLOT_OBJS + ((t)->sub == RCX_NO_SUB ? (n) + RCX_SUBS : (t)->sub))])
 
 /*
- * Execute the byte code at the pc of task n, whose code object is at OBJECT_OF(), or end its code: the task ends, or
+ * Execute the byte code at the pc of task t, whose code object is at OBJECT_OF(), or end its code: the task ends, or
  * returns from its subroutine. An instruction that runs past the end of the code, or a jump that lands outside it,
  * stops the task.
  */
 #ifdef __H8300__
-void run_slow(struct rcx *b, u8 n, const u16 *at); /* called by drivers/h8300/runfast.S */
+void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at); /* called by drivers/h8300/runfast.S */
 #else
 static
 #endif
-__attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
+__attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at)
 {
-    struct rcx_task *t = &b->task[n];
     u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
     const u8 *ins;
 #if RCX_SWAN
@@ -192,7 +191,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         return;
     }                                  /* a jump outside the code object */
 stop:
-    sched_stop_task(b, n);
+    sched_stop(b, t);
 }
 
 #ifdef __H8300__
@@ -315,7 +314,7 @@ leave:
     if (!count)
         return 0;
 slow:
-    run_slow(b, n, at);
+    run_slow(b, t, at);
     if (!--count || b->runmask != mask || b->yield)
         return count;
     goto next;

@@ -249,9 +249,7 @@ slow:	mov.w	@(F_CODE,r7),r0		; the task's pc where the byte code is
 	sub.w	r0,r1
 	mov.w	r1,@(RF_PC,r5)
 	mov.b	@(F_OBJ,r7),r4l
-ended:	mov.b	@(F_BASE,r7),r0l	; run_slow(b, n, &b->obj_start[object])
-	mov.b	r4l,r1l
-	sub.b	r0l,r1l
+ended:	mov.w	r5,r1			; run_slow(b, t, &b->obj_start[object])
 	mov.w	@(F_AT,r7),r2
 	mov.w	r6,r0
 	.word	0x5E00,_run_slow	; jsr @_run_slow (r4-r6 survive it)
