@@ -18,7 +18,7 @@ RCX_STATIC_ASSERT(arith_nibbles, ARITH_SET == RCX_OP_SET_VAR >> 4 && ARITH_SUM =
 #if !RCX_SWAN
 static
 #endif
-s16 ops_arith(u8 kind, s16 a, s16 v)
+s16 ops_arith(s16 a, s16 v, u8 kind)
 {
 #if RCX_SWAN
     u16 n;
@@ -74,7 +74,7 @@ s16 ops_arith(u8 kind, s16 a, s16 v)
             a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
         return a;
     default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15; any other v: mask 0 */
-        v = ops_arith(ARITH_SHL, 1, v);
+        v = ops_arith(1, v, ARITH_SHL);
         return (s16)(kind == ARITH_BSET ? a | v : a & ~v);
 #else
     default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
@@ -139,7 +139,7 @@ void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
     s16 value = ops_source(b, t, ins + 1); /* the source one byte on */
     s16 *var = var_ref(b, t, ins[1]);
     if (var)
-        *var = ops_arith((u8)(ins[0] >> 4), *var, value); /* the toggle bit is bit 3 */
+        *var = ops_arith(*var, value, (u8)(ins[0] >> 4)); /* the toggle bit is bit 3 */
 }
 
 /*

@@ -173,7 +173,7 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes
  * opcode does nothing. */
 void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
 #if RCX_SWAN
-s16 ops_arith(u8 kind, s16 a, s16 v); /* a op v, kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
+s16 ops_arith(s16 a, s16 v, u8 kind); /* a op v for kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
 #endif
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
 /* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */

@@ -80,7 +80,7 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         f = (u8)(kind - SW_SOURCE);
         if (!f)
             f = arith_of[ins[0] & 7];
-        source_set(b, t, ins[1], RCX_LE16(ins + 2), ops_arith(f, ops_source(b, t, ins), v));
+        source_set(b, t, ins[1], RCX_LE16(ins + 2), ops_arith(ops_source(b, t, ins), v, f));
         return 0;
     }
     if (kind >= SW_K8) {               /* op g k8 / op g H L / op g T v8 */
@@ -90,7 +90,7 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         if (kind == SW_SRC8)
             v = ops_source8(b, t, ins + 1);
         g = &b->global[ins[1]];
-        *g = ops_arith(ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET, *g, v); /* 0x2B-0x2D: = */
+        *g = ops_arith(*g, v, ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET); /* 0x2B-0x2D: = */
         return 0;
     }
     if (kind == SW_WAIT_MS)
