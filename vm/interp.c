@@ -86,9 +86,8 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         if ((u16)(size - pc) <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
-        if (!swan_exec(b, t, ins, sw))
-            return;
-        goto stop;
+        swan_exec(b, t, ins, sw);
+        return;
     }
 #endif
     op = (u8)(ins[0] & ~RCX_TOGGLE);

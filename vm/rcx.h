@@ -176,8 +176,8 @@ void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
 s16 ops_arith(s16 a, s16 v, u8 kind); /* a op v for kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
 #endif
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
-/* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */
-u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
+/* Swan's opcodes (vm/swan.c): run the instruction of row r (a stack overflow or underflow stops the task). */
+void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
 void swan_download_done(struct rcx *b);
 void swan_power(struct rcx *b, u8 src, u8 motor, s16 value); /* sources 5, 16, 32 written (sources.c) */ /* the last block came: the object's size, then its slot's kind */
 

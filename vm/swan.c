@@ -42,14 +42,14 @@ static __attribute__((noinline)) void clear_all(struct rcx *b, u8 f)
 }
 
 /* Push (0xE3) and pop (0x01 n) change the stack's depth; overflow and underflow are bad input: the task stops. */
-static u8 stack(struct rcx_task *t, const u8 *ins, u8 kind)
+static void stack(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 {
     s16 depth = (s16)(t->stack + (kind == SW_PUSH ? 1 : -(s16)ins[1]));
 
     if ((u16)depth > RCX_SWAN_STACK)
-        return 1;
-    t->stack = (u8)depth;
-    return 0;
+        sched_stop(b, t);
+    else
+        t->stack = (u8)depth;
 }
 
 /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
@@ -70,7 +70,7 @@ static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
     ops_set_message(b, m);
 }
 
-u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
+void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
 {
     u8 kind = rcx_swan_kind(r), f;
     s16 v, *g;
@@ -81,7 +81,7 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
         if (!f)
             f = arith_of[ins[0] & 7];
         source_set(b, t, ins[1], RCX_LE16(ins + 2), ops_arith(ops_source(b, t, ins), v, f));
-        return 0;
+        return;
     }
     if (kind >= SW_K8) {               /* op g k8 / op g H L / op g T v8 */
         v = ins[2];                    /* byte constants are unsigned */
@@ -91,17 +91,16 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
             v = ops_source8(b, t, ins + 1);
         g = &b->global[ins[1]];
         *g = ops_arith(*g, v, ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET); /* 0x2B-0x2D: = */
-        return 0;
+        return;
     }
     if (kind == SW_WAIT_MS)
         ops_wait(b, t, ins);
     else if (kind == SW_CLEAR_ALL)
         clear_all(b, ins[1]);
     else if (kind <= SW_POP)
-        return stack(t, ins, kind);
+        stack(b, t, ins, kind);
     else
         message(b, t, ins, kind);
-    return 0;
 }
 
 /*
