@@ -12,17 +12,20 @@
  * The jump is taken when the comparison FAILS. */
 static const u8 relation[4] = { 4, 1, 2, 5 };
 
-/* EndOfSub, explicit or by running off the end of a subroutine (nqc does not append 0xF6). Returns 0 when the task
- * has no return address and must stop (spec p. 26: something has gone wrong). */
-static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
+/* EndOfSub, explicit or by running off the end of the code (nqc does not append 0xF6): a subroutine returns, a task
+ * ends; so does a subroutine without a return address (spec p. 26: something has gone wrong). */
+static void end_of_code(struct rcx *b, struct rcx_task *t)
 {
-    events_sub_returned(b, t);
-    if (!t->has_ret)
-        return 0;
-    t->has_ret = 0;
-    t->sub = t->ret_sub;
-    t->pc = t->ret_pc;
-    return 1;
+    if (t->sub != RCX_NO_SUB) {
+        events_sub_returned(b, t);
+        if (t->has_ret) {
+            t->has_ret = 0;
+            t->sub = t->ret_sub;
+            t->pc = t->ret_pc;
+            return;
+        }
+    }
+    sched_stop(b, t);
 }
 
 /*
@@ -74,11 +77,8 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     s16 value;
     s16 *var;
 
-    if (pc >= size) {                  /* the end of the code */
-        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
-            return;
-        goto stop;                     /* a task ends there */
-    }
+    if (pc >= size)                    /* the end of the code: as EndOfSub */
+        goto end;
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
@@ -172,10 +172,9 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         break;
     }
     case C_END_OF_SUB:
-        /* In a task body there is no return address. */
-        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
-            break;
-        goto stop;
+    end:
+        end_of_code(b, t);
+        break;
     default:
         if ((flags >> 3) & RCX_PROGRAM)
             ops_exec(b, t, ins);
