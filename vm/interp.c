@@ -195,13 +195,13 @@ stop:
 #ifdef __H8300__
 /*
  * On the brick the loop over the running tasks is drivers/h8300/runfast.S: it runs their byte codes of the
- * commonest kinds itself, in turn or a lone task's many in a row, any other through run_slow(), and returns the
- * count left once it has run `count`, or nothing runs any more, or yield is set (looked at after each round and
- * each call of run_slow()), leaving b->rr as the loop below does. It does what the loop below does
- * (tests/drivers/test_h8tasks.c compares the two).
+ * commonest kinds itself, in turn or a lone task's many in a row (RCX_RUN_CHUNK at most between two looks at yield),
+ * any other through run_slow(), and returns the count left once it has run `count`, or nothing runs any more, or
+ * yield is set (looked at after each round and each call of run_slow()), leaving b->rr as the loop below does. It
+ * does what the loop below does (tests/drivers/test_h8tasks.c compares the two).
  */
 #include "runfast.h"
-u8 rcx_run_fast(struct rcx *b, u8 count);
+u16 rcx_run_fast(struct rcx *b, u16 count);
 RCX_STATIC_ASSERT(rf_prog, offsetof(struct rcx, prog) == RF_PROG && offsetof(struct rcx, rr) == RF_RR);
 RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offsetof(struct rcx, yield) == RF_YIELD);
 RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
@@ -213,18 +213,13 @@ RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX
 RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR
                             && RCX_OP_SUM_VAR == RF_OP_SUM_VAR && RCX_OP_SUB_VAR == RF_OP_SUB_VAR
                             && RCX_OP_SJUMP == RF_OP_SJUMP && RCX_SRC_VAR == RF_SRC_VAR
-                            && RCX_SRC_CONST == RF_SRC_CONST);
+                            && RCX_SRC_CONST == RF_SRC_CONST && RCX_RUN_CHUNK == RF_RUN_CHUNK);
 
 u16 vm_run(struct rcx *b, u16 budget)
 {
-    u16 left = budget;
-    u8 count;
-
-    while (left && b->runmask && !b->yield) {
-        count = left > RCX_RUN_CHUNK ? RCX_RUN_CHUNK : (u8)left; /* then a look at yield */
-        left = (u16)(left - count + rcx_run_fast(b, count));
-    }
-    return (u16)(budget - left);
+    if (!budget || !b->runmask || b->yield)
+        return 0;
+    return (u16)(budget - rcx_run_fast(b, budget));
 }
 #else
 /*

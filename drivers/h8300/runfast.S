@@ -5,13 +5,14 @@
 ; 3.4 cannot keep a task switch, or a lone task's position, in registers; here a switch costs a look-up of the
 ; task's code object, and a lone task keeps its position in registers from one byte code to the next.
 ;
-; u8 rcx_run_fast(struct rcx *b, u8 count)
-;   count 1-255; b->runmask is not 0. Visits the running tasks from task b->rr on, round after round, and returns
-;   the byte codes left of count once it has run `count`, or nothing runs any more, or b->yield is set (looked at
-;   after each round and each run_slow()); b->rr is then the task after the last one run, as vm_run() leaves it.
+; u16 rcx_run_fast(struct rcx *b, u16 count)
+;   count at least 1; b->runmask is not 0. Visits the running tasks from task b->rr on, round after round (a lone
+;   task: RF_RUN_CHUNK byte codes a round at most), and returns the byte codes left of count once it has run `count`,
+;   or nothing runs any more, or b->yield is set (looked at after each round and each run_slow()); b->rr is then the
+;   task after the last one run, as vm_run() leaves it.
 ;
-; Registers: r6 = b, r5 = the task, r4h = byte codes the task may still run in this turn (1, or all of count for a
-; lone task), r4l = its code object's number in the task's own body (prog * 18 + 8 + n; the opcode while a byte
+; Registers: r6 = b, r5 = the task, r4h = byte codes the task may still run in this turn (1, or up to RF_RUN_CHUNK
+; for a lone task), r4l = its code object's number in the task's own body (prog * 18 + 8 + n; the opcode while a byte
 ; code runs), r3 = runmask >> n (then >> n + 1); during a turn: r1 = the byte code's address, r2 = the end of the
 ; code (both absolute), r0 and r3 scratch. On the stack (F_*): what is left of count besides r4h, where the code
 ; starts, its obj_start entry, r3 and r4l kept over a turn, prog * 18 + 8 (task 0's body).
@@ -33,7 +34,7 @@ _rcx_run_fast:
 	mov.w	r4,@-r7
 	mov.w	r5,@-r7
 	mov.w	r6,@-r7
-	mov.w	r1,@-r7			; F_LEFT: count (its low byte)
+	mov.w	r1,@-r7			; F_LEFT: count
 	mov.w	r0,r6
 	mov.b	@(RF_PROG,r6),r0l
 	mov.b	#RF_SLOT_OBJS,r0h
@@ -74,13 +75,20 @@ insub:	mov.b	@(F_BASE,r7),r1l	; a subroutine: prog * 18 + sub
 	add.b	r1l,r0l
 	bra	object
 
-alone:	mov.b	@(F_LEFT+1,r7),r4h	; a lone task's turn: all that is left
-	sub.b	r0l,r0l
-	mov.b	r0l,@(F_LEFT+1,r7)
+alone:	mov.w	@(F_LEFT,r7),r0		; a lone task's turn: what is left, up to RF_RUN_CHUNK (then a look at yield)
+	mov.b	#RF_RUN_CHUNK,r4h
+	mov.w	#RF_RUN_CHUNK,r2
+	cmp.w	r2,r0
+	bcc	1f
+	mov.b	r0l,r4h
+1:	sub.b	r4h,r0l
+	subx	#0,r0h
+	mov.w	r0,@(F_LEFT,r7)
+	sub.w	r3,r3			; no other task after this one
 	bra	visit1
-visit:	mov.b	@(F_LEFT+1,r7),r0l	; a turn of one byte code
-	dec	r0l
-	mov.b	r0l,@(F_LEFT+1,r7)
+visit:	mov.w	@(F_LEFT,r7),r0		; a turn of one byte code
+	subs	#1,r0
+	mov.w	r0,@(F_LEFT,r7)
 	mov.b	#1,r4h
 visit1:	mov.w	r3,@(F_MASK,r7)
 	mov.b	r4l,@(F_OBJ,r7)
@@ -228,12 +236,14 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 	sub.w	r0,r1
 	mov.w	r1,@(RF_PC,r5)
 	mov.b	@(F_OBJ,r7),r4l
-	mov.b	@(F_LEFT+1,r7),r0l
+	mov.w	@(F_LEFT,r7),r0
 	beq	over			; count run
 	mov.w	@(F_MASK,r7),r3
 	beq	1f
 	.word	0x5A00,next		; jmp @next: more running tasks after this one
-1:	mov.w	@(RF_RUNMASK,r6),r0	; the end of a round: a lone task runs on from here
+1:	mov.b	@(RF_YIELD,r6),r0l	; the end of a round
+	bne	over
+	mov.w	@(RF_RUNMASK,r6),r0	; a lone task runs on from here
 	mov.w	r0,r3
 	subs	#1,r0
 	and.b	r3l,r0l
@@ -241,9 +251,7 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 	mov.w	r0,r0
 	bne	2f
 	.word	0x5A00,alone		; jmp @alone
-2:	mov.b	@(RF_YIELD,r6),r0l
-	bne	over
-	.word	0x5A00,round0		; jmp @round0
+2:	.word	0x5A00,round0		; jmp @round0
 
 slow:	mov.w	@(F_CODE,r7),r0		; the task's pc where the byte code is
 	sub.w	r0,r1
@@ -254,11 +262,12 @@ ended:	mov.w	r5,r1			; run_slow(b, t, &b->obj_start[object])
 	mov.w	r6,r0
 	.word	0x5E00,_run_slow	; jsr @_run_slow (r4-r6 survive it)
 	dec	r4h
-	mov.b	@(F_LEFT+1,r7),r0l
+	mov.w	@(F_LEFT,r7),r0
 	add.b	r4h,r0l			; all that is left
-	mov.b	r0l,@(F_LEFT+1,r7)
+	addx	#0,r0h
+	mov.w	r0,@(F_LEFT,r7)
 	sub.b	r4h,r4h
-	mov.b	r0l,r0l
+	mov.w	r0,r0
 	beq	over
 	mov.w	@(RF_RUNMASK,r6),r0
 	beq	over			; nothing runs any more
@@ -279,7 +288,7 @@ over:	inc	r4l			; b->rr: the task after this one
 	mov.b	r4l,@(RF_RR,r6)
 	mov.w	@r7+,r0			; F_LEFT
 	add.b	r4h,r0l			; the byte codes left
-	sub.b	r0h,r0h
+	addx	#0,r0h
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
