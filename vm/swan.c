@@ -116,12 +116,15 @@ static u8 swan_code(const u8 *arena, const u16 *at)
 {
     const u16 *last = at + RCX_SLOT_OBJS;
     const u8 *p, *end;
-    u8 op;
+    u8 op, check;
 
     for (; at != last; at++)
-        for (p = arena + at[0], end = arena + at[1]; p < end; p += 1 + rcx_op_params((u8)(op & ~RCX_TOGGLE))) {
+        for (p = arena + at[0], end = arena + at[1]; p < end; p += 1 + rcx_op_params(op)) { /* toggle bit folded */
             op = *p;
-            if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
+            if (rcx_swan_find(op))
+                return 1;
+            check = (u8)(op & 0xE7);
+            if (check == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
                 return 1;
         }
     return 0;
