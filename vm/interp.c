@@ -168,7 +168,8 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             holds = 1;
         else if (a == value)
             holds = 2;
-        jump = !(relation[(u8)(ins[1] >> 6)] & holds);
+        op = ins[1];                   /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
+        jump = !(relation[(u8)((u8)(op << 2) | (u8)(op >> 6)) & 3] & holds);
         break;
     }
     case C_END_OF_SUB:
@@ -176,7 +177,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         end_of_code(b, t);
         break;
     default:
-        if ((flags >> 3) & RCX_PROGRAM)
+        if (flags & (RCX_PROGRAM << 3)) /* availability: bits 3-4 */
             ops_exec(b, t, ins);
         /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
         break;
