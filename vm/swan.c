@@ -17,7 +17,7 @@ static const u8 arith_of[8] = {
 
 /* ClearAll's flags: 0x01 timers (both kinds), 0x02 inputs, 0x04 variables, 0x08 task stacks, 0x10 events,
  * 0x40 datalog; 0x20 breakpoints: OpenRCX has none */
-static __attribute__((noinline)) void clear_all(struct rcx *b, u8 f)
+static void clear_all(struct rcx *b, u8 f)
 {
     struct rcx_task *t;
     u8 i;
