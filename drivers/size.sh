@@ -34,7 +34,7 @@ ${prefix}nm "$image" | awk '
         head = sym["_rcx_head_end"] - sym["_rcx_image_base"]
         printf "  of which:   %5d as they run (entry, knock string), %d the unpacker, the rest packed\n", head, sym["_rcx_unpacker_size"]
         printf "image:        %5d bytes unpacked (0x8000-0x%04X)\n", image, sym["_rcx_image_end"] - 1
-        printf "free memory:  %5d bytes for programs and datalog (at least 12900)\n", sym["_rcx_arena_size"]
+        printf "free memory:  %5d bytes for programs and datalog (at least 12400)\n", sym["_rcx_arena_size"]
         high = sym["_rcx_high_end"] - sym["_rcx_high_start"]
         printf "run at F000:  %5d bytes of code of 2944 (0xF000-0x%04X; %d left), unpacked at 0x%04X\n", high, sym["_rcx_high_end"] - 1, 2944 - high, sym["_rcx_high_load"]
         printf "RAM:          code+data 0x8000-0x%04X, bss 0x%04X up to 0x%04X of 0xF000\n", sym["_rcx_high_load"] - 1, sym["_rcx_bss_start"], sym["_rcx_bss_end"]

@@ -57,9 +57,8 @@ u8 rcx_op_reply(u8 op);
 u8 rcx_op_params(u8 op);
 
 /*
- * Swan's program opcodes (the RCX_SWAN_OP rows of rcx_opcodes.def). The firmware keeps one 3-byte row per line of the
- * table: the opcode, its operand bytes (bits 0-2) and bit 3 for a family of eight, and what runs it (enum
- * rcx_swan_kind, vm/swan.c).
+ * Swan's program opcodes (the RCX_SWAN_OP rows of rcx_opcodes.def). The firmware keeps one 2-byte row per line of the
+ * table: the opcode, its operand bytes and what runs it (enum rcx_swan_kind, vm/swan.c).
  */
 enum rcx_swan_op {
 #define RCX_SWAN_OP(code, n, id, lasm, params, kind, layout) RCX_SW_##id = code,
@@ -69,19 +68,36 @@ enum rcx_swan_op {
 #undef RCX_SWAN_OP
     RCX_SW_NONE = 0x100
 };
+/* ops_arith()'s operations (vm/ops.c): the high nibble of SetVar..OrVar (0x14-0x94), then Swan's */
+#define ARITH_SET 1
+#define ARITH_SUM 2
+#define ARITH_SUB 3
+#define ARITH_DIV 4
+#define ARITH_MUL 5
+#define ARITH_SGN 6
+#define ARITH_ABS 7
+#define ARITH_AND 8
+#define ARITH_OR 9
+#define ARITH_COMP 10
+#define ARITH_MOD 11
+#define ARITH_XOR 12
+#define ARITH_SHL 13
+#define ARITH_SHR 14
+#define ARITH_NEG 15
+#define ARITH_BSET 16
+#define ARITH_BCLR 17
 enum rcx_swan_kind {
-    SW_GLOBAL = 0, /* global[g] op= k8 / word / S(T, v8); op by the low three bits, 0x2B-0x2D: = */
-    SW_SOURCE,     /* S(d) op= S(s); op by the low three bits */
-    SW_SET, SW_ABS, SW_SGN, SW_BSET, SW_BCLR, SW_XOR, SW_SHL, SW_SHR, SW_NEG, /* S(d) = f(S(d), S(s)) */
     SW_WAIT_MS, SW_CLEAR_ALL, SW_PUSH, SW_POP,
-    SW_MSG_BYTE, SW_MSG_WORD, SW_SEND_PARAM, SW_SET_PARAM /* message and parameter: m k8, m k16, T v8 T v16 */
+    SW_MSG_BYTE, SW_MSG_WORD, SW_SEND_PARAM, SW_SET_PARAM, /* message and parameter: m k8, m k16, T v8 T v16 */
+    SW_K8, SW_WORD, SW_SRC8, /* global[g] op= k8 / word / S(T, v8); op by the low three bits, 0x2B-0x2D: = */
+    SW_SOURCE                /* S(d) op= S(s); op by the low three bits, or SW_SOURCE + ARITH_*: that one */
 };
-#define RCX_SWAN_FAMILY 0x08
 struct rcx_swan_row {
-    u8 code;
-    u8 params;      /* bits 0-2 operand bytes, RCX_SWAN_FAMILY: code..code + 7 */
-    u8 kind;
+    u8 code;        /* of a family of eight: its first */
+    u8 info;        /* bits 0-2 operand bytes, bits 3-7 the kind */
 };
+#define rcx_swan_params(r) ((u8)((r)->info & 7))
+#define rcx_swan_kind(r) ((u8)((r)->info >> 3))
 /* The row of a Swan opcode, all eight bits of it; NULL for any other byte. */
 #if RCX_SWAN
 const struct rcx_swan_row *rcx_swan_find(u8 op);

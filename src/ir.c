@@ -8,7 +8,6 @@
  * length comes from the opcode's low three bits (spec p. 5), for 0x45 from its own length field; a block longer
  * than the buffer is drained until the line falls silent (the host retries later).
  */
-#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
 
@@ -17,13 +16,6 @@ RCX_STATIC_ASSERT(chunk_fits_rx, IR_CHUNK <= IR_RX_MAX);
 RCX_STATIC_ASSERT(block_reply_fits, IR_RX_MAX + 2 <= IR_BUF_SIZE); /* a 0x45 block's reply after the block */
 
 static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
-
-void ir_init(struct rcx_brick *k)
-{
-    memset(&k->ir, 0, sizeof k->ir);
-    k->ir.range = 0xFF; /* applied at the first ir_poll() */
-    k->ir.last_op = RCX_OP_MESSAGE;
-}
 
 /* Nonzero while a packet goes out. A tail call rather than `||`, which would keep its 0 or 1 across the call. */
 static u8 sending(struct rcx_brick *k)
@@ -130,44 +122,42 @@ void ir_tick(struct rcx_brick *k)
     }
 }
 
-/* Byte `pos` of the framed packet. */
-static u8 framed(const struct rcx_ir *ir, u16 pos)
+/* Byte `pos` of the framed packet, counted as if it had the preamble (tx_start). */
+static u8 framed(const struct rcx_brick *k, u16 pos)
 {
-    u8 odd = 0, v;
+    u8 flip = 0, v;
 
-    if (ir->tx_pack & IR_PACK_PREAMBLE) {
-        if (pos < 3)
-            return preamble[pos];
-        pos -= 3;
-    }
-    if (ir->tx_pack & IR_PACK_COMPLEMENT) {
-        odd = (u8)(pos & 1);
+    if (pos < 3)
+        return preamble[pos];
+    pos -= 3;
+    if (k->ir.tx_pack & IR_PACK_COMPLEMENT) {
+        if (pos & 1)
+            flip = 0xFF;           /* the complement, after its byte */
         pos >>= 1;
     }
-    v = pos < ir->tx_src_len ? ir->tx_src[pos] : ir->tx_sum;
-    return odd ? (u8)~v : v;
+    v = pos < k->ir.tx_src_len ? k->ir.tx_src[pos] : k->ir.tx_sum;
+    return (u8)(v ^ flip);
 }
 
-/* Start sending the `len` bytes at ir->tx_src, framed as ir->tx_pack says. Out of line, so that ir_poll() keeps
- * its registers. */
-static __attribute__((noinline)) void tx_start(struct rcx_ir *ir, u8 len)
+/* Start sending the `len` bytes at tx_src, framed as tx_pack says. Out of line, so that ir_poll() keeps its
+ * registers. */
+static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
-    const u8 *p = ir->tx_src;
-    u8 sum = 0, pack = ir->tx_pack;
+    const u8 *p;
+    u8 sum, pack = k->ir.tx_pack;
     u16 total = len;
 
-    ir->tx_src_len = len;
-    while (len--)
-        sum = (u8)(sum + *p++);
-    ir->tx_sum = sum;
-    ir->tx_pos = 0;
+    k->ir.tx_src_len = len;
+    /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
+    k->ir.tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
     if (pack & IR_PACK_COMPLEMENT)
         total = (u16)(2 * total + 2);
     else if (pack & IR_PACK_CHECKSUM)
         total++;
-    if (pack & IR_PACK_PREAMBLE)
-        total += 3;
-    ir->tx_total = total;
+    k->ir.tx_total = (u16)(total + 3);
+    for (p = k->ir.tx_src, sum = 0; len; len--)
+        sum = (u8)(sum + *p++);
+    k->ir.tx_sum = sum;
 }
 
 static void execute(struct rcx_brick *k)
@@ -190,7 +180,6 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    struct rcx_ir *ir;
     u8 n, len = 0;
 
     if (k->ir.range != k->vm.tx_range) {
@@ -222,16 +211,15 @@ void ir_poll(struct rcx_brick *k)
             display_ir_activity(&k->vm);
         }
         if (len)
-            tx_start(&k->ir, len);
+            tx_start(k, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (!sending(k) || hal_ir_busy(&k->vm))
         return;
-    ir = &k->ir;
     n = 0;
     do
-        ir->rx[n++] = framed(ir, ir->tx_pos++);
-    while (n < IR_CHUNK && ir->tx_pos < ir->tx_total);
-    ir->echo = (u16)(ir->echo + n);
-    hal_ir_send(&k->vm, ir->rx, n, ir->tx_mode);
+        k->ir.rx[n++] = framed(k, k->ir.tx_pos++);
+    while (n < IR_CHUNK && k->ir.tx_pos < k->ir.tx_total);
+    k->ir.echo = (u16)(k->ir.echo + n);
+    hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);
 }

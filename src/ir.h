@@ -54,6 +54,8 @@ struct rcx_ir {
     u8 tx_pack;         /* IR_PACK_* below */
     u8 tx_mode;         /* HAL_IR_* */
     u8 tx_sum;
+    /* Positions in the framed packet, counted from the preamble's first byte even when it has none (tx_pos then
+     * starts at 3): the next byte, and the end. */
     u16 tx_pos;
     u16 tx_total;
     u16 echo;           /* own bytes not heard back yet */
@@ -77,7 +79,9 @@ enum {
 #define IR_PACK_CHECKSUM 0x04   /* a checksum byte (always present with IR_PACK_COMPLEMENT) */
 #define IR_PACK_STANDARD 0x07
 
-void ir_init(struct rcx_brick *k);
+/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll(), and the first packet is
+ * new. A macro: rt_init() is its one user. */
+#define ir_init(k) ((k)->ir.range = 0xFF, (k)->ir.last_op = RCX_OP_MESSAGE)
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */

@@ -1,4 +1,5 @@
 /* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. */
+#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
 
@@ -8,6 +9,9 @@ RCX_STATIC_ASSERT(vm_is_first, offsetof(struct rcx_brick, vm) == 0);
 void rt_init(struct rcx_brick *k, u16 arena_addr)
 {
     vm_init(&k->vm, arena_addr);
+    /* The IR link and the user interface start from zeros (one memset for both, which follow the machine), then
+     * set what is not 0. */
+    memset(&k->ir, 0, sizeof *k - offsetof(struct rcx_brick, ir));
     ir_init(k);
     ui_init(k);
 }
@@ -28,20 +32,9 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
     return k->vm.runmask ? vm_run(&k->vm, budget) : 0; /* no call when no task runs */
 }
 
-/* rt_ir_byte() is in src/ir.c. */
+/* rt_ir_byte() is in src/ir.c; rt_battery() and rt_button() are inline in src/runtime.h. */
 
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)
 {
     sensor_sample(&k->vm, input, raw10);
-}
-
-void rt_battery(struct rcx_brick *k, u16 millivolts)
-{
-    k->vm.battery_mv = millivolts;
-    ui_battery(k);
-}
-
-void rt_button(struct rcx_brick *k, u8 button, u8 down)
-{
-    ui_button(k, button, down);
 }

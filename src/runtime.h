@@ -72,17 +72,26 @@ u16 rt_run(struct rcx_brick *k, u16 budget);
 /* A byte received on the IR link; `error` non-zero for a parity/framing/overrun error. */
 void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 
-/* A 10-bit A/D sample of input 0-2, every 1 ms; the battery in millivolts whenever measured. */
+/* A 10-bit A/D sample of input 0-2, every 1 ms. */
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
 /* After samples of all inputs: nonzero when another scan equal to them would change nothing, which
  * rt_sensors_resting then tells until that may no longer be so (vm/sensors.h, sensors_at_rest). A port may skip
  * such scans. */
 #define rt_sensors_at_rest(k) sensors_at_rest(&(k)->vm)
 #define rt_sensors_resting(k) ((k)->vm.sensors_rest)
-void rt_battery(struct rcx_brick *k, u16 millivolts);
+/* The battery in millivolts, whenever measured. Inline, as rt_button() below: a call the port may as well make
+ * itself. */
+static inline void rt_battery(struct rcx_brick *k, u16 millivolts)
+{
+    k->vm.battery_mv = millivolts;
+    ui_battery(k);
+}
 
 /* A debounced button edge. */
 enum rt_button { RT_BUTTON_ONOFF = 0, RT_BUTTON_RUN, RT_BUTTON_VIEW, RT_BUTTON_PRGM };
-void rt_button(struct rcx_brick *k, u8 button, u8 down);
+static inline void rt_button(struct rcx_brick *k, u8 button, u8 down)
+{
+    ui_button(k, button, down);
+}
 
 #endif

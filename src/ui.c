@@ -3,17 +3,8 @@
  * every command received (the IR layer sets vm.idle_reset, spec p. 35; so do PBAliveOrNot and PBPowerDownTime)
  * restarts the power-down timer.
  */
-#include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
-
-/* Nothing idle yet, not switching off, no battery mark; and the double beep, which firm0328 plays when it starts
- * (its own request, not the ROM's: issue 15, observed on the emulated brick), as when the brick is switched on. */
-void ui_init(struct rcx_brick *k)
-{
-    memset(&k->ui, 0, sizeof k->ui);
-    sound_ui(&k->vm, 1);
-}
 
 /* View steps from whatever is shown (a program's own view included, which drops out) to the watch, then through
  * inputs 1-3 and outputs A-C and back to the watch, as firm0328 does (reference-firmware.md). */

@@ -22,7 +22,10 @@ struct rcx_ui {
     u8 battery_low;  /* the mark is on */
 };
 
-void ui_init(struct rcx_brick *k);
+/* Once rt_init() has cleared struct rcx_ui (nothing idle yet, not switching off, no battery mark): the double beep,
+ * which firm0328 plays when it starts (its own request, not the ROM's: issue 15, observed on the emulated brick), as
+ * when the brick is switched on. A macro: rt_init() is its one user. */
+#define ui_init(k) sound_ui(&(k)->vm, 1)
 void ui_button(struct rcx_brick *k, u8 button, u8 down);
 void ui_tick(struct rcx_brick *k);
 void ui_battery(struct rcx_brick *k); /* rcx.battery_mv was measured again: the low-battery mark */

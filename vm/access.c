@@ -28,6 +28,7 @@
  *    the other region. A refused ENTER AC jumps to LBL, or inside an access region ends it (SEND AC) with LBL as
  *    its label. ENTER EV without events to monitor is EXIT EV.
  *  - START, STOP and DELETE TASK end everything.
+ * The states are bits (vm/access.h), so that testing for a region is one bit test.
  * RC is empty in the states without an access region, so releasing it there changes nothing.
  *
  * Where the table is silent or garbled:
@@ -44,14 +45,8 @@
 static void jump(struct rcx *b, struct rcx_task *t, u16 pc)
 {
     t->pc = pc;
-    if (t->state == RCX_TASK_WAITING) {
-        const struct rcx_task *u;
-        u16 bit = 1;
-        for (u = b->task; u != t; u++)
-            bit <<= 1;
-        t->state = RCX_TASK_RUNNING;
-        b->runmask |= bit;
-    }
+    if (t->state == RCX_TASK_WAITING)
+        sched_set_state(b, t, RCX_TASK_RUNNING);
 }
 
 /* The labels are pairs, EV's then AC's (vm/events.h), so the EV and AC inputs (0 and 1) index them. */
@@ -62,55 +57,43 @@ RCX_STATIC_ASSERT(labels_are_pairs,
 #define label_pc(t, input) (*(const u16 *)(const void *)((const u8 *)&(t)->ev.ev_pc + 2u * (input)))
 #define label_sub(t, input) (*((const u8 *)&(t)->ev.ev_sub + (input)))
 
-/* The EV, AC, EXIT EV, EXIT AC or END input: the first and last rules above. */
+/* The EV, AC, EXIT EV or EXIT AC input: the first rule above (the last is events_task_ended(), vm/events.h). */
 void access_input(struct rcx *b, struct rcx_task *t, u8 input)
 {
     u8 s = t->ev.state, n = ACCESS_NONE;
 
-    if (input != ACCESS_IN_END) {
-        if (input & 1) { /* AC, EXIT AC */
-            if (!ACCESS_HAS_AC(s))
-                return;
-            if (s == ACCESS_EV_AC)
-                n = ACCESS_EV;
-        } else {
-            if (!ACCESS_HAS_EV(s))
-                return;
-            if (s == ACCESS_AC_EV)
-                n = ACCESS_AC;
-        }
-        if (input <= ACCESS_IN_AC) { /* EV (0) or AC (1): the label of that region, one load each */
-            t->sub = label_sub(t, input);
-            jump(b, t, label_pc(t, input));
-        }
+    if (input & 1) { /* AC, EXIT AC */
+        if (!ACCESS_HAS_AC(s))
+            return;
+        if (s == ACCESS_EV_AC)
+            n = ACCESS_EV;
+    } else {
+        if (!ACCESS_HAS_EV(s))
+            return;
+        if (s == ACCESS_AC_EV)
+            n = ACCESS_AC;
     }
-    if (!ACCESS_HAS_AC(n))
-        t->ev.rc = 0; /* RELEASE RC */
+    if (input <= ACCESS_IN_AC) { /* EV (0) or AC (1): the label of that region, one load each */
+        t->sub = label_sub(t, input);
+        jump(b, t, label_pc(t, input));
+    }
+    if (n != ACCESS_AC) /* NONE or EV: no access region left */
+        t->ev.rc = 0;   /* RELEASE RC */
     t->ev.state = n;
 }
 
-/* IF OK for a request of `res`: OK when no other task of higher priority (lower number) holds any of it. When it
- * is, the other holders (of equal or lower priority) lose everything they hold, their motors brake (p. 98) and
- * they take the AC input: a first pass over the tasks decides, a second one takes. */
-static u8 request(struct rcx *b, const struct rcx_task *t, u8 res)
+/* IF OK for a request of `res` by task t: OK when no other task of higher priority (lower number) holds any of it
+ * (t itself is not of higher priority than t). */
+static u8 granted(const struct rcx *b, const struct rcx_task *t, u8 res)
 {
-    struct rcx_task *u;
-    u8 take;
+    const struct rcx_task *u = b->task;
+    u8 n = RCX_TASKS; /* a count: cheaper than comparing with the end of b->task */
 
-    for (take = 0; take < 2; take++) {
-        u = b->task;
-        do
-            if (u != t && (u->ev.rc & res)) {
-                if (!take) {
-                    if (u->priority < t->priority)
-                        return 0;
-                } else {
-                    outputs_revoked(b, u->ev.rc);
-                    access_input(b, u, ACCESS_IN_AC);
-                }
-            }
-        while (++u < b->task + RCX_TASKS);
-    }
+    do {
+        if ((u->ev.rc & res) && u->priority < t->priority)
+            return 0;
+        u++;
+    } while (--n);
     return 1;
 }
 
@@ -128,21 +111,32 @@ void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 targe
 }
 
 /* ENTER AC: RES, LBL. No recursion (the firmware's stack check refuses it): the AC inputs a request causes are
- * performed directly. The request changes other tasks only, so this task's state is still the one it had. */
+ * performed directly. */
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
 {
-    u8 s = t->ev.state;
+    struct rcx_task *u;
 
-    if (request(b, t, resources)) {
+    if (granted(b, t, resources)) {
+        /* The other holders (of equal or lower priority) lose everything they hold, their motors brake (p. 98) and
+         * they take the AC input. This task's own resources go first, so that it is not one of them: it holds
+         * RES in their place. */
+        t->ev.rc = 0;
+        u = b->task;
+        do
+            if (u->ev.rc & resources) {
+                outputs_revoked(b, u->ev.rc);
+                access_input(b, u, ACCESS_IN_AC);
+            }
+        while (++u < b->task + RCX_TASKS);
         t->ev.rc = resources;
-        t->ev.state = ACCESS_HAS_EV(s) ? ACCESS_EV_AC : ACCESS_AC;
+        t->ev.state = (u8)(ACCESS_AC | (t->ev.state & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
     } else {
         /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the same
-         * place: what remains of it is EXIT AC, which does nothing outside an access region. */
+         * place: what remains of it is EXIT AC. */
         jump(b, t, target);
-        access_input(b, t, ACCESS_IN_EXIT_AC);
-        if (!ACCESS_HAS_AC(s))
+        if (!ACCESS_HAS_AC(t->ev.state))
             return;
+        access_input(b, t, ACCESS_IN_EXIT_AC);
     }
     /* AC=LBL: after the IF OK, or before it in the states with an access region (neither JUMP nor EXIT AC reads
      * it). */

@@ -24,52 +24,58 @@ static const u8 direct_ops[] = {
 
 enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
 
-/* Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
- * leaves a subroutine's code for good when it is stopped). */
-static void stop_users(struct rcx *b, u8 is_task, u8 sub)
+/*
+ * Tasks and subroutines are named here by their place among the selected slot's code objects (rcx.h): subroutine n
+ * is n, task n is RCX_SUBS + n, and rcx_obj_sub(b->prog, id) its code object either way.
+ *
+ * Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
+ * leaves a subroutine's code for good when it is stopped). Then the code is deleted, unless it is still being
+ * downloaded: the download stays active (reference-firmware.md).
+ */
+static void release(struct rcx *b, u8 id)
 {
-    u8 n;
+    u8 n, obj;
 
-    if (is_task) {
-        sched_stop_task(b, sub);
-        return;
-    }
-    for (n = 0; n < RCX_TASKS; n++) {
-        struct rcx_task *t = &b->task[n];
-        if (t->state != RCX_TASK_IDLE && t->sub != RCX_NO_SUB && (t->sub == sub || (t->has_ret && t->ret_sub == sub)))
-            sched_stop_task(b, n);
-    }
-}
+    if (id >= RCX_SUBS) {
+        sched_stop_task(b, (u8)(id - RCX_SUBS));
+    } else {
+        /* A task in its own body (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle
+         * task changes nothing. */
+        for (n = 0; n < RCX_TASKS; n++) {
+            const struct rcx_task *t = &b->task[n];
 
-/* Deleting never touches code that is still being downloaded: the download stays active (reference-firmware.md). */
-static void delete_obj(struct rcx *b, u8 obj)
-{
+            if (t->sub == id || (t->has_ret && t->ret_sub == id))
+                sched_stop_task(b, n);
+        }
+    }
+    obj = rcx_obj_sub(b->prog, id);
     if (!(b->dl.active && b->dl.obj == obj))
         mem_delete(b, obj);
 }
 
-static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
+/* 0x25, 0x35: opcode, 0, number, 0, size(2). */
+static u8 begin_download(struct rcx *b, const u8 *cmd)
 {
-    u8 obj;
-    u16 room;
+    u8 op = (u8)(cmd[0] & ~RCX_TOGGLE), id = cmd[2];
 
+    if (op == RCX_OP_BEGIN_TASK)
+        id = (u8)(id < RCX_TASKS ? id + RCX_SUBS : 0xFF);
+    else if (id >= RCX_SUBS)
+        id = 0xFF;
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
         mem_delete(b, b->dl.obj);
     }
-    if (n >= (is_task ? RCX_TASKS : RCX_SUBS))
+    if (id == 0xFF)
         return DL_BAD_NUMBER;
-    obj = rcx_obj_sub(b->prog, n);
-    if (is_task)
-        obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
-    room = mem_free(b);
-    if (size > room && (u16)(size - room) > mem_obj_size(b, obj))
-        return DL_NO_MEMORY;       /* refused: the old code stays as it was */
-    stop_users(b, is_task, n);
-    mem_resize(b, obj, 0);
-    mem_resize(b, obj, size);      /* cannot fail: checked above */
+    b->dl.obj = rcx_obj_sub(b->prog, id); /* only read while dl.active */
+    /* mem_resize() refuses exactly what does not fit, and then changes nothing: the old code stays as it was. Once
+     * it fits, the old code goes (its tasks stopped) and the new one starts as zeros. */
+    if (!mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4)))
+        return DL_NO_MEMORY;
+    release(b, id);
+    mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4));
     b->dl.active = 1;
-    b->dl.obj = obj;
     b->dl.expect = 1;
     b->dl.last = 0xFFFF;
     b->dl.filled = 0;
@@ -79,14 +85,15 @@ static u8 begin_download(struct rcx *b, u8 is_task, u8 n, u16 size)
 /* 0x45: seq(2) len(2) data(len) checksum(1), already checked to be complete. Blocks are numbered 1, ..., n, 0. */
 static u8 continue_download(struct rcx *b, const u8 *cmd)
 {
-    u16 seq = RCX_LE16(cmd + 1), count = RCX_LE16(cmd + 3), i;
+    u16 seq = RCX_LE16(cmd + 1), count = RCX_LE16(cmd + 3), *start, at;
+    const u8 *p = cmd + 5, *end = p + count;
     u8 sum = 0;
 
     if (!b->dl.active)
         return DL_NOT_ACTIVE;
-    for (i = 0; i < count; i++)
-        sum = (u8)(sum + cmd[5 + i]);
-    if (sum != cmd[5 + count])
+    while (p != end)
+        sum = (u8)(sum + *p++);
+    if (sum != *end)
         return DL_BLOCK_ERROR;
     if (seq) {
         if (seq == b->dl.last)
@@ -94,13 +101,15 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
         if (seq != b->dl.expect)
             return DL_BLOCK_ERROR; /* out of order */
     }
-    if (count > mem_obj_size(b, b->dl.obj) - b->dl.filled)
+    start = &b->obj_start[b->dl.obj];
+    at = (u16)(start[0] + b->dl.filled);
+    if (count > (u16)(start[1] - at))
         return DL_BLOCK_ERROR;     /* more code than BeginOfTask/Sub announced */
-    memcpy(b->arena + b->obj_start[b->dl.obj] + b->dl.filled, cmd + 5, count);
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
     b->dl.expect++;
-    if (seq == 0) {                /* the last block: the code may run from now on */
+    memcpy(b->arena + at, cmd + 5, count);
+    if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
 #if RCX_SWAN
         swan_download_done(b); /* the object's final size, and its slot's kind (vm/swan.c) */
@@ -130,7 +139,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
     u8 flags = rcx_opflags[rcx_op_index(op)];
-    u8 n = 0, i, c;
+    u8 *out = reply + 1, c; /* the reply after its opcode */
 
 #if RCX_SWAN
     if (op == RCX_SW_MSG_WORD && len >= 4)
@@ -138,104 +147,88 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
 #endif
     if (!(flags & (RCX_DIRECT << 3)))
         return 0;                  /* unknown or program-only: not answered */
-    if (op != RCX_OP_CONTINUE_DL && len < 1 + rcx_op_params(op))
-        return 0;                  /* truncated */
+    if (len <= (flags & 7))
+        return 0;                  /* truncated (ContinueDL's 5: its header) */
     reply[0] = (u8)~cmd[0];
     for (c = 0; c < sizeof direct_ops && direct_ops[c] != op; c++)
         ;
 
+    /* Each case returns the reply's length, its opcode included (0: no reply). */
     switch (c) {
     case D_MEMMAP:
-        n = mem_memmap(b, reply + 1);
-        break;
+        return (u8)(1 + mem_memmap(b, out));
     case D_DELETE_ALL_TASKS:
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
     case D_DELETE_SUB: {
-        /* Tasks are stopped, and tasks inside a subroutine, before their code goes. */
-        u8 tasks = c <= D_DELETE_TASK;
-        u8 limit = tasks ? RCX_TASKS : RCX_SUBS, obj;
+        u8 id = 0, end = RCX_SUBS;  /* all the subroutines, or all the tasks */
 
-        i = 0;
-        if (op & 7) {              /* one of them: nothing when out of range */
-            i = cmd[1];
-            if (i < limit)
-                limit = (u8)(i + 1);
+        if (c <= D_DELETE_TASK) {
+            id = RCX_SUBS;
+            end = RCX_SLOT_OBJS;
         }
-        for (; i < limit; i++) {
-            stop_users(b, tasks, i);
-            obj = rcx_obj_sub(b->prog, i);
-            if (tasks)
-                obj = (u8)(obj + RCX_SUBS); /* rcx_obj_task() */
-            delete_obj(b, obj);
+        if (op & 7) {              /* one of them */
+            if (cmd[1] >= (u8)(end - id))
+                return 1;          /* out of range: nothing */
+            id = (u8)(id + cmd[1]);
+            end = (u8)(id + 1);
         }
-        break;
+        for (; id < end; id++)
+            release(b, id);
+        return 1;
     }
     case D_BATTERY:
     case D_POLL: {
         u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
-        reply[1] = (u8)v;
-        reply[2] = (u8)(v >> 8);
-        n = 2;
-        break;
+        out[0] = (u8)v;
+        out[1] = (u8)(v >> 8);
+        return 3;
     }
     case D_UPLOAD_RAM: {
         u16 addr = RCX_LE16(cmd + 1);
         /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
         if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
             return 0;
-        n = upload_ram(b, addr, cmd[3], reply + 1);
-        break;
+        return (u8)(1 + upload_ram(b, addr, cmd[3], out));
     }
     case D_UPLOAD_DATALOG: {
-        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), reply + 1);
-        if (bytes < 0)
-            return 0;
-        n = (u8)bytes;
-        break;
+        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), out);
+        return bytes < 0 ? 0 : (u8)(1 + bytes);
     }
     case D_UNLOCK_BRICK:
     case D_BOOT_MODE:
-        if (memcmp(cmd + 1, unlock_key, sizeof unlock_key) == 0) {
-            if (c == D_BOOT_MODE) {
-                b->boot_mode = 1;  /* the runtime answers, then hands the brick to the ROM */
-            } else {
-                memcpy(reply + 1, versions, sizeof versions);
-                n = sizeof versions;
-            }
-        }                          /* a wrong key gets a bare acknowledgement */
-        break;
+        if (memcmp(cmd + 1, unlock_key, sizeof unlock_key))
+            return 1;              /* a wrong key gets a bare acknowledgement */
+        if (op == RCX_OP_BOOT_MODE) {
+            b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
+            return 1;
+        }
+        memcpy(out, versions, sizeof versions);
+        return 1 + sizeof versions;
     case D_BEGIN_TASK:
     case D_BEGIN_SUB:
-        reply[1] = begin_download(b, c == D_BEGIN_TASK, cmd[2], RCX_LE16(cmd + 4));
-        n = 1;
-        break;
+        out[0] = begin_download(b, cmd);
+        return 2;
     case D_CONTINUE_DL:
         /* A block shorter than its header announces is a truncated packet: no reply, like any other. */
-        if (len < 6 || RCX_LE16(cmd + 3) > (u16)(len - 6))
+        if (RCX_LE16(cmd + 3) > (u16)(len - 6))
             return 0;
-        reply[1] = continue_download(b, cmd);
-        n = 1;
-        break;
+        out[0] = continue_download(b, cmd);
+        return 2;
     case D_BEGIN_FIRMWARE:
     case D_UNLOCK_FIRMWARE:
         return 0;                  /* only the ROM's download mode answers these */
     case D_REMOTE:
         remote_command(b, RCX_LE16(cmd + 1));
         return 0;
-    default:
-        /* A program started from the host (nqc -run) begins as one started with Run does (reference-firmware.md). */
-        if (op == RCX_OP_START_TASK && !cmd[1])
-            outputs_program_start(b);
-        ops_exec(b, NULL, cmd);
-        /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
-         * SetDatalog makes 1, when memory is short (reference-firmware.md). */
-        c = (u8)(flags >> 5);
-        if (!c)
-            return 0;
-        reply[1] = op == RCX_OP_SET_DATALOG && !b->log_size;
-        n = (u8)(c - 1);
-        break;
     }
-    return (u8)(1 + n);
+    /* A program started from the host (nqc -run) begins as one started with Run does (reference-firmware.md). */
+    if (op == RCX_OP_START_TASK && !cmd[1])
+        outputs_program_start(b);
+    ops_exec(b, NULL, cmd);
+    /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
+     * SetDatalog makes 1, when memory is short (reference-firmware.md). The byte is written whatever the class: the
+     * reply's length decides whether it goes out. */
+    out[0] = op == RCX_OP_SET_DATALOG && !b->log_size;
+    return (u8)(flags >> 5);
 }

@@ -9,7 +9,7 @@
  *
  * Work goes only where events are: each input counts the events watching it and sensor[0] those watching a timer,
  * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
- * other sensors, costs nothing here, and an evaluation visits the events of one sensor only. An event on an input
+ * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only. An event on an input
  * is still looked at after every sample, steady or not: its thresholds can be moved by SetSourceValue, which does
  * not tell the engine, and a calibration samples every millisecond.
  */
@@ -59,8 +59,6 @@ static const s16 events_default[10][2] = {
     { -32768, 32767 },  /* counter */
 };
 
-#define CAL_SAMPLES_PHYSICAL 8  /* p. 74 */
-
 /* struct rcx_event.source is the KEY of the event's sensor, 0 for a cleared event: so an event is all zeros when it
  * has no sensor, as at power-on, before ClearAllEvents, when no input counts it yet. */
 #define KEY(sensor) ((u8)((sensor) + 1))
@@ -68,7 +66,7 @@ static const s16 events_default[10][2] = {
 /* Private flags of struct rcx_event. */
 #define F_BOOL 0x01     /* last boolean seen (inputs); the boolean is 0 or 1, so it is that bit */
 #define F_OUT 0x02      /* the state has left LOW: a click may be under way (click.left_low is its start) */
-#define F_HIGH 0x04     /* ... and has reached HIGH since */
+#define F_HIGH 0x04     /* ... and has reached HIGH since (set only with F_OUT) */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
 
 /* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. */
@@ -79,18 +77,17 @@ static u8 bit_of(u16 set, u8 n)
     return (u8)(set & 1u);
 }
 
-/* One more (d = 1) or one less (d = 0xFF) event watches the sensor whose KEY is k (not 0): an input counts its own
- * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the
- * input, or sensor[0]. */
-static struct rcx_sensor *watch(struct rcx *b, u8 k, u8 d)
+/* One more (d = 1) or one less (d = 0xFF) event watches sensor n: an input counts its own (and learns its number,
+ * for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the input, or sensor[0]. */
+static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
 {
     struct rcx_sensor *s = b->sensor;
 
-    if (k > KEY(RCX_SENSORS - 1)) {
+    if (n >= RCX_SENSORS) {
         s->others = (u8)(s->others + d);
     } else {
-        s += k - KEY(0);
-        s->number = (u8)(k - KEY(0));
+        s += n;
+        s->number = n;
         s->watched = (u8)(s->watched + d);
         b->sensors_rest = 0;
     }
@@ -116,7 +113,7 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
         return;
     e = &b->event[ev];
     if (e->source)
-        watch(b, e->source, 0xFF);
+        watch(b, (u8)(e->source - KEY(0)), 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
     e->type = type;
     e->state = RCX_EVENT_STATE_UNDEFINED;
@@ -124,7 +121,7 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     if (type == RCX_EVENT_NONE)
         return;
     e->source = KEY(source);
-    in = watch(b, e->source, 1);
+    in = watch(b, source, 1);
     if (source < RCX_SENSORS) {
         row = (u8)(in->mode >> 5);
         /* Edges are counted from here on, not from whatever the input did before. */
@@ -136,9 +133,6 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     e->upper = events_default[row][1];
 }
 
-RCX_STATIC_ASSERT(rem_count_are_last_click, offsetof(struct rcx_event, u.click.last_click) ==
-                  offsetof(struct rcx_event, u.cal.rem) && offsetof(struct rcx_event_cal, count) ==
-                  offsetof(struct rcx_event_cal, rem) + 1);
 void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
 {
     struct rcx_event *e;
@@ -146,12 +140,10 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
     if (ev >= RCX_EVENTS || !(e = &b->event[ev])->source)
         return; /* a cleared event has no sensor to measure */
     e->state = RCX_EVENT_STATE_CAL_START;
-    e->flags &= F_BOOL;
-    /* The sums and the count start from 0 (the pct bytes are set below): word stores, cheaper than a memset() of the
-     * union. The byte after pct[] is never used and stays 0 from SetEvent. */
+    e->flags &= F_BOOL; /* no click under way: the union now holds the calibration */
     e->u.cal.sum8 = 0;
-    e->u.click.last_click = 0; /* rem and count */
     e->u.cal.raw_sum = 0;
+    e->u.cal.rem = 0;
     e->u.cal.pct[0] = lower;
     e->u.cal.pct[1] = upper;
     e->u.cal.pct[2] = hyst;
@@ -165,22 +157,29 @@ static s16 fraction(s16 v, u8 f)
     return (s16)((m ^ s) - s);
 }
 
-/* a + b, saturated to the 16-bit range. */
+/* a + b, saturated to the 16-bit range: the wrapped sum moved the wrong way from a when it overflowed. */
 static s16 add_sat(s16 a, s16 b)
 {
     s16 r = (s16)(u16)((u16)a + (u16)b);
-    if ((a ^ r) & (b ^ r) & 0x8000)
-        r = (s16)(0x7FFF ^ (a >> 15)); /* the limit on a's side */
+
+    if (b < 0) {
+        if (r > a)
+            r = -32768;
+    } else if (r < a) {
+        r = 32767;
+    }
     return r;
 }
 
-/* One calibration sample (pp. 74, 103-105) of `in`, the input measured (NULL: a virtual sensor, one sample).
+/* One calibration sample (pp. 74, 103-105) of `in`, the input measured (8 samples; NULL: a virtual sensor, one).
  * UT = Avg + Avg*UTFct/k1 (+ H), LT = Avg - Avg*LTFct/k1 (- H), H = AvgRaw*HFct/k2 for the raw-scale modes and 0
- * otherwise; k1 = 256, k2 = 2048 (H is (AvgRaw*HFct/256)/8). The average of 8 is kept as the sum of value/8 plus the
- * sum of the remainders, which stays within 16 bits. The hysteresis changes only when the thresholds do.
+ * otherwise; k1 = 256, k2 = 2048. The average of 8 is kept as the sum of value/8 plus the sum of the remainders, which
+ * stays within 16 bits; the raw samples add up to at most 8 x 1023, which leaves the top 3 bits of raw_sum to count
+ * them (8 steps of RAW_COUNT_ONE carry out of it). The hysteresis changes only when the thresholds do.
  * The raw-scale modes (pp. 104-105) are raw, percent (reflection), Celsius and Fahrenheit (temperature); the
  * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
  * the same A/D scale. */
+#define RAW_COUNT_ONE 0x2000
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
@@ -188,95 +187,106 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
-        c->sum8 = (s16)(c->sum8 + (avg >> 3));
         c->rem = (u8)(c->rem + (avg & 7));
-        c->raw_sum = (u16)(c->raw_sum + in->raw);
-        if (++c->count < CAL_SAMPLES_PHYSICAL)
-            return;
+        c->sum8 = (s16)(c->sum8 + (avg >> 3));
+        c->raw_sum = (u16)(c->raw_sum + in->raw + RAW_COUNT_ONE);
+        if (c->raw_sum >= RAW_COUNT_ONE)
+            return; /* fewer than 8 samples */
         avg = (s16)(c->sum8 + (c->rem >> 3));
         m = (u8)(in->mode & ~SENSOR_SLOPE);
         if ((u8)(m - SENSOR_MODE_BOOL) <= SENSOR_MODE_PERIODS - SENSOR_MODE_BOOL || m == SENSOR_MODE_ANGLE)
             c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
-    /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. */
-    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum >> 3), c->pct[2]) >> 3);
-    /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold out of range. */
-    e->lower = add_sat((s16)(avg - fraction(avg, c->pct[0])), (s16)-e->hysteresis);
+    /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
+     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
+    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[2]) >> 6);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+    /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
+     * in the raw-scale modes, whose values are -200 or more: with the 8th sample one of them, Avg is above -28 700
+     * and H at most 127, so nothing to saturate. */
+    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 
-/* A change of state to `to` from a known state: the range entered, and the click bookkeeping (p. 102): a click is
+/* A change of state from `from` (known) to `to`: the range entered, and the click bookkeeping (p. 102): a click is
  * LOW -> HIGH -> LOW within the duration; a double click is a click that starts within the duration after the
  * previous click ended. Returns the event types that happened, all of them 8-15: bit n is type 8 + n. */
 #define TYPE_8(type) ((u8)(1u << ((type) - 8)))
 RCX_STATIC_ASSERT(states_are_types, RCX_EVENT_STATE_LOW == 0 && RCX_EVENT_STATE_NORMAL == 1 &&
                   RCX_EVENT_STATE_HIGH == 2 && RCX_EVENT_LOW == 8 && RCX_EVENT_NORMAL == 9 && RCX_EVENT_HIGH == 10);
-static u8 changed(struct rcx *b, struct rcx_event *e, u8 to)
+static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
 {
     u16 now = b->ticks10;
     u8 f = e->flags, happened = (u8)(to + 1 + (to >> 1)); /* 1 << to: LOW, NORMAL, HIGH follow the states */
 
-    if (e->state == RCX_EVENT_STATE_LOW) {
-        e->u.click.left_low = now;
-        f = (u8)((f & ~F_HIGH) | F_OUT);
-    } else if (to == RCX_EVENT_STATE_LOW) {
-        if (!(~f & (F_OUT | F_HIGH)) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
+    if (to == RCX_EVENT_STATE_LOW) {
+        if ((f & F_HIGH) && (u16)(now - e->u.click.left_low) <= (u16)e->duration) {
             e->clicks = (s16)(u16)((u16)e->clicks + 1u); /* wraps, as the firmware's counters do */
             happened |= TYPE_8(RCX_EVENT_CLICK);
-            if ((f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
+            f ^= F_FIRST; /* cleared if this click was waiting to be the second one */
+            if (!(f & F_FIRST) && (u16)(e->u.click.left_low - e->u.click.last_click) <= (u16)e->duration) {
                 happened |= TYPE_8(RCX_EVENT_DOUBLE_CLICK);
-                f &= (u8)~F_FIRST;
-            } else {
+            } else { /* this one waits for a second one */
                 f |= F_FIRST;
                 e->u.click.last_click = now;
             }
         }
-        /* Leaving LOW starts the next click afresh, so the progress can go in any case. */
+        /* Leaving LOW again starts the next click afresh, so the progress can go in any case. */
         f &= (u8)~(F_OUT | F_HIGH);
+    } else {
+        if (from == RCX_EVENT_STATE_LOW) {
+            e->u.click.left_low = now;
+            f |= F_OUT;
+        }
+        if (to == RCX_EVENT_STATE_HIGH && (f & F_OUT))
+            f |= F_HIGH;
     }
-    if (to == RCX_EVENT_STATE_HIGH)
-        f |= F_HIGH;
     e->flags = f;
     return happened;
 }
 
 /* The state `value` puts event e in. Hysteresis widens the range being left (reference-firmware.md): HIGH holds
- * while value > upper - h, LOW while value < lower + h. Moved thresholds stop at the 16-bit limits. */
+ * while value > upper - h, LOW while value < lower + h; for the other thresholds h is 0. Moved thresholds stop at
+ * the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
-    if (value > (e->state == RCX_EVENT_STATE_HIGH ? add_sat(e->upper, (s16)-e->hysteresis) : e->upper))
+    s16 h = e->hysteresis;
+
+    if (e->state != RCX_EVENT_STATE_HIGH)
+        h = 0;
+    if (value > add_sat(e->upper, (s16)-h))
         return RCX_EVENT_STATE_HIGH;
-    if (value < (e->state == RCX_EVENT_STATE_LOW ? add_sat(e->lower, e->hysteresis) : e->lower))
+    h = e->hysteresis;
+    if (e->state != RCX_EVENT_STATE_LOW)
+        h = 0;
+    if (value < add_sat(e->lower, h))
         return RCX_EVENT_STATE_LOW;
     return RCX_EVENT_STATE_NORMAL;
 }
 
-/* Evaluate event e against its sensor's present value, when that is sensor `only` (ANY: whatever it is). Only
- * events_message_changed() asks for the message: a mailbox event happened. Returns non-zero when the event fires. */
-#define ANY 0xFE /* above every sensor, and so is its KEY */
+/* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
+ * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
+ * non-zero when the event fires. */
+#define ANY 0xFE /* above every KEY */
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
-    u8 s = (u8)(e->source - KEY(0)), to;
+    u8 s = (u8)(e->source - KEY(0)), to, from, bo;
     u16 happened = 0;
     s16 value;
 
-    if (only != ANY) {
-        if (s != only)
-            return 0;
-        if (s == RCX_EVENT_SRC_MESSAGE)
-            happened = HAPPENED(RCX_EVENT_MAILBOX);
-    }
     if (s < RCX_SENSORS) {
         in = &b->sensor[s];
         value = in->value;
-        if ((in->boolean ^ e->flags) & F_BOOL) { /* the boolean is 0 or 1 */
+        bo = in->boolean; /* 0 or 1 */
+        if ((u8)(bo ^ e->flags) & F_BOOL) {
             e->flags ^= F_BOOL;
-            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][in->boolean];
+            happened = boolean_edge[(in->mode & SENSOR_SLOPE) != 0][bo];
         }
     } else if (s == RCX_EVENT_SRC_MESSAGE) {
         value = b->message;
+        if (only != ANY) /* events_message_changed() */
+            happened = HAPPENED(RCX_EVENT_MAILBOX);
     } else { /* timer[s - 3] or global[s - 8] (counters), both 16-bit */
         value = *(const s16 *)(const void *)((const u8 *)b + 2u * s +
                                              (s < RCX_EVENT_SRC_MESSAGE
@@ -288,15 +298,17 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
         return 0;
     }
     to = classify(e, value);
-    /* The first classification after SetEvent or a calibration is not a change of range. */
-    if (to != e->state && e->state != RCX_EVENT_STATE_UNDEFINED)
-        happened |= (u16)((u16)changed(b, e, to) << 8);
+    from = e->state;
     e->state = to;
+    /* The first classification after SetEvent or a calibration is not a change of range. */
+    if (to != from && from != RCX_EVENT_STATE_UNDEFINED)
+        happened |= (u16)((u16)changed(b, e, from, to) << 8);
     return happened && bit_of(happened, e->type);
 }
 
-/* Evaluate the events watching input `only`, or, when `only` is another sensor (ANY: any of them), those of the
- * events watching a timer, the message or a counter that watch it - `left` events in all - and tell the tasks. */
+/* Evaluate the events watching the sensor whose KEY is `only` (ANY: any timer, the message or a counter) and tell the
+ * tasks. `left` is how many there are, when known (events_set() keeps the counts of each input and of the other
+ * sensors), so that the loop can stop at the last one; 0 when not known: all 16 are looked at. */
 RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
                   sizeof(((struct rcx *)0)->global[0]) == 2);
 static void evaluate_set(struct rcx *b, u8 left, u8 only)
@@ -305,14 +317,16 @@ static void evaluate_set(struct rcx *b, u8 left, u8 only)
     u16 bit = 1, fired = 0;
     u8 k;
 
-    for (; left; bit <<= 1, e++) { /* the counts are exact (events_set() keeps them): the loop ends in the array */
+    do {
         k = e->source;
-        if (only < RCX_SENSORS ? k == KEY(only) : k > KEY(RCX_SENSORS - 1)) {
-            left--;
+        if (only == ANY ? k > KEY(RCX_SENSORS - 1) : k == only) {
             if (evaluate(b, e, only))
                 fired += bit; /* bits of distinct events: no carries */
+            if (!--left)
+                break;
         }
-    }
+        e++;
+    } while (bit <<= 1);
     if (fired)
         events_raise(b, fired);
 }
@@ -334,13 +348,13 @@ void events_raise(struct rcx *b, u16 mask)
 void events_counter_changed(struct rcx *b, u8 n)
 {
     if (n < RCX_COUNTERS)
-        evaluate_set(b, b->sensor[0].others, (u8)(RCX_EVENT_SRC_COUNTER + n));
+        evaluate_set(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
 }
 
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 void events_message_changed(struct rcx *b)
 {
-    evaluate_set(b, b->sensor[0].others, RCX_EVENT_SRC_MESSAGE);
+    evaluate_set(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
 }
 
 void events_input(struct rcx *b, u8 n)
@@ -349,7 +363,7 @@ void events_input(struct rcx *b, u8 n)
 
     if (n < RCX_SENSORS) {
         s = b->sensor + n;
-        evaluate_set(b, s->watched, n);
+        evaluate_set(b, s->watched, KEY(n));
     }
 }
 

@@ -56,11 +56,11 @@ struct rcx_event {
             u16 last_click; /* rcx.ticks10 at the end of a click still waiting for its double */
         } click;
         struct rcx_event_cal {
-            s16 sum8;       /* of the values sampled so far, each divided by 8 ... */
-            u8 rem;         /* ... and of the remainders of those divisions */
-            u8 count;
-            u16 raw_sum;    /* of the raw samples (inputs only) */
+            s16 sum8;       /* of the values sampled so far, each divided by 8 (rem: the remainders) */
+            u16 raw_sum;    /* of the raw samples (inputs only), and in its top 3 bits how many */
+            u8 rem;
             u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
+            u8 unused[2];   /* spare: struct rcx keeps its layout (RF_ARENA, drivers/h8300/runfast.h) */
         } cal;
     } u;
 };
@@ -93,10 +93,8 @@ void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 targe
 static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
 void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target);
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
-static inline void events_task_ended(struct rcx *b, struct rcx_task *t) /* start/stop/delete: release, forget */
-{
-    access_input(b, t, ACCESS_IN_END);
-}
+/* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
+#define events_task_ended(b, t) ((void)(b), (t)->ev.rc = 0, (void)((t)->ev.state = ACCESS_NONE))
 void events_sub_returned(struct rcx *b, struct rcx_task *t); /* EndOfSub: leave regions entered in the sub */
 
 #endif

@@ -1,8 +1,8 @@
 /*
  * The interpreter: byte codes of the running tasks in round-robin order, one per task and pass of the scheduler.
  *
- * Control flow lives here (jumps, loops, tests, subroutines, waits, monitoring and access-control regions);
- * everything else is shared with direct commands in ops.c. Code is untrusted: an instruction that runs past the
+ * The byte codes that jump or end the code live here (jumps, loop checks, tests, entering monitoring and
+ * access-control regions, the end of a subroutine); every other one runs in ops.c, with the direct commands. Code is untrusted: an instruction that runs past the
  * end of its code object, or a jump that lands outside it, stops the task instead of reading foreign memory.
  */
 #include "rcx.h"
@@ -12,22 +12,25 @@
  * The jump is taken when the comparison FAILS. */
 static const u8 relation[4] = { 4, 1, 2, 5 };
 
-/* EndOfSub, explicit or by running off the end of a subroutine (nqc does not append 0xF6). Returns 0 when the task
- * has no return address and must stop (spec p. 26: something has gone wrong). */
-static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
+/* EndOfSub, explicit or by running off the end of the code (nqc does not append 0xF6): a subroutine returns, a task
+ * ends; so does a subroutine without a return address (spec p. 26: something has gone wrong). */
+static void end_of_code(struct rcx *b, struct rcx_task *t)
 {
-    events_sub_returned(b, t);
-    if (!t->has_ret)
-        return 0;
-    t->has_ret = 0;
-    t->sub = t->ret_sub;
-    t->pc = t->ret_pc;
-    return 1;
+    if (t->sub != RCX_NO_SUB) {
+        events_sub_returned(b, t);
+        if (t->has_ret) {
+            t->has_ret = 0;
+            t->sub = t->ret_sub;
+            t->pc = t->ret_pc;
+            return;
+        }
+    }
+    sched_stop(b, t);
 }
 
 /*
  * The program-only byte codes run_slow() handles itself, found by a search (a switch on the sparse opcodes would
- * cost the H8/300 a tree of long branches), the commonest first. The first twelve carry a distance, in pairs of a
+ * cost the H8/300 a tree of long branches), the commonest first. All but the last carry a distance, in pairs of a
  * short (even index) and a long form; dist_at gives its field's offset per pair. Each distance counts from the first
  * byte of its own field (spec p. 11):
  *   0-1   forward unsigned 8 bits, or signed 16 bits
@@ -36,7 +39,6 @@ static u8 end_of_sub(struct rcx *b, struct rcx_task *t)
  */
 #define OUTSIDE 0xFFFFu /* negative as an s16, unlike any offset in a code object: the one test for "outside" */
 RCX_STATIC_ASSERT(offsets_positive, RCX_ARENA_SIZE < 0x8000u);
-RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
 #define NOT_AN_OP 0x08 /* has the toggle bit: no opcode reaches the search with it */
 static const u8 control[] = {
     RCX_OP_SCHECK_DO, RCX_OP_LCHECK_DO,
@@ -45,60 +47,47 @@ static const u8 control[] = {
     RCX_OP_SDEC_JUMP_LTZ, RCX_OP_LDEC_JUMP_LTZ,
     RCX_OP_SENTER_EVENT, RCX_OP_LENTER_EVENT,
     NOT_AN_OP, RCX_OP_ENTER_ACCESS,
-    RCX_OP_SET_LOOP, RCX_OP_WAIT, RCX_OP_GOSUB, RCX_OP_END_OF_SUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
+    RCX_OP_END_OF_SUB,
 };
 static const u8 dist_at[6] = { 6, 1, 1, 2, 4, 2 };
-enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_ACCESS = 11, C_SET_LOOP = 12, C_WAIT,
-       C_GOSUB, C_END_OF_SUB, C_EXIT_EVENT, C_EXIT_ACCESS };
+enum { C_CHECK_DO = 0, C_CHECK_LOOP = 2, C_JUMP = 4, C_DEC = 6, C_ENTER = 8, C_ACCESS = 11, C_END_OF_SUB };
 
 /* Where the code task n executes starts: its code object's entry in b->obj_start (the next entry is its end). */
 #define OBJECT_OF(b, t, n) \
     (&(b)->obj_start[(u8)((b)->prog * RCX_SLOT_OBJS + ((t)->sub == RCX_NO_SUB ? (n) + RCX_SUBS : (t)->sub))])
 
 /*
- * Execute the byte code at the pc of task n, whose code object is at OBJECT_OF(), or end its code: the task ends, or
+ * Execute the byte code at the pc of task t, whose code object is at OBJECT_OF(), or end its code: the task ends, or
  * returns from its subroutine. An instruction that runs past the end of the code, or a jump that lands outside it,
  * stops the task.
  */
 #ifdef __H8300__
-void run_slow(struct rcx *b, u8 n, const u16 *at); /* called by drivers/h8300/runfast.S */
+void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at); /* called by drivers/h8300/runfast.S */
 #else
 static
 #endif
-__attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
+__attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at)
 {
-    struct rcx_task *t = &b->task[n];
     u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
     const u8 *ins;
 #if RCX_SWAN
     const struct rcx_swan_row *sw;
 #endif
     u8 op, i, jump = 0, len, flags;
-#if RCX_SWAN
-    u8 ms = 0;                         /* the wait is WaitMS's */
-#endif
     s16 value;
     s16 *var;
 
-    if (pc >= size) {                  /* the end of the code */
-        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
-            return;
-        goto stop;                     /* a task ends there */
-    }
+    if (pc >= size)                    /* the end of the code: as EndOfSub */
+        goto end;
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
-        len = (u8)(sw->params & 7);
+        len = rcx_swan_params(sw);
         if ((u16)(size - pc) <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
-        if (sw->kind == SW_WAIT_MS) {
-            ms = 1;
-            goto wait;
-        }
-        if (!swan_exec(b, t, ins, sw))
-            return;
-        goto stop;
+        swan_exec(b, t, ins, sw);
+        return;
     }
 #endif
     op = (u8)(ins[0] & ~RCX_TOGGLE);
@@ -114,7 +103,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
     if (!((flags ^ (RCX_PROGRAM << 3)) & (3 << 3))) /* program-only: bits 3-4 of the flags, in place */
         for (i = 0; i < sizeof control && control[i] != op; i++)
             ;
-    if (i < C_SET_LOOP) {
+    if (i < C_END_OF_SUB) {
         /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
          * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
          * (none reaches 0x10000). Only CheckLoop's unsigned 16 bits could wrap around into the code: capped. */
@@ -179,57 +168,16 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
             holds = 1;
         else if (a == value)
             holds = 2;
-        jump = !(relation[(u8)(ins[1] >> 6)] & holds);
+        op = ins[1];                   /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
+        jump = !(relation[(u8)((u8)(op << 2) | (u8)(op >> 6)) & 3] & holds);
         break;
     }
-    case C_SET_LOOP:
-        /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
-        if (t->loop_depth < RCX_LOOP_LEVELS) {
-            value = ops_source8(b, t, ins);
-            t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
-        }
-        break;
-    case C_GOSUB:
-        if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
-            break;                     /* calling an empty subroutine does nothing */
-        /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
-        t->has_ret = 1;
-        t->ret_sub = t->sub;
-        t->ret_pc = t->pc;
-        t->sub = ins[1];
-        t->pc = 0;
-        break;
     case C_END_OF_SUB:
-        /* In a task body there is no return address. */
-        if (t->sub != RCX_NO_SUB && end_of_sub(b, t))
-            break;
-        goto stop;
-    case C_WAIT:
-#if RCX_SWAN
-    wait:                              /* and Swan's WaitMS (ms = 1) */
-#endif
-        value = ops_source(b, t, ins);
-        if (value <= 0)
-            break;                     /* negative: ignored (spec p. 67); zero: no wait */
-        /* Waits run on the 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
-#if RCX_SWAN
-        t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
-        t->wait_ms = ms;
-        b->waiting |= (u8)(ms + 1);    /* WAIT_MS or WAIT_10MS */
-#else
-        t->wake = (u16)(b->ticks10 + (u16)value);
-        b->waiting = WAIT_10MS;
-#endif
-        sched_set_state(b, t, RCX_TASK_WAITING);
-        break;
-    case C_EXIT_EVENT:
-        events_monitor_exit(b, t);
-        break;
-    case C_EXIT_ACCESS:
-        access_exit(b, t);
+    end:
+        end_of_code(b, t);
         break;
     default:
-        if ((flags >> 3) & RCX_PROGRAM)
+        if (flags & (RCX_PROGRAM << 3)) /* availability: bits 3-4 */
             ops_exec(b, t, ins);
         /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
         break;
@@ -242,19 +190,19 @@ __attribute__((noinline)) void run_slow(struct rcx *b, u8 n, const u16 *at)
         return;
     }                                  /* a jump outside the code object */
 stop:
-    sched_stop_task(b, n);
+    sched_stop(b, t);
 }
 
 #ifdef __H8300__
 /*
  * On the brick the loop over the running tasks is drivers/h8300/runfast.S: it runs their byte codes of the
- * commonest kinds itself, in turn or a lone task's many in a row, any other through run_slow(), and returns the
- * count left once it has run `count`, or nothing runs any more, or yield is set (looked at after each round and
- * each call of run_slow()), leaving b->rr as the loop below does. It does what the loop below does
- * (tests/drivers/test_h8tasks.c compares the two).
+ * commonest kinds itself, in turn or a lone task's many in a row (RCX_RUN_CHUNK at most between two looks at yield),
+ * any other through run_slow(), and returns the count left once it has run `count`, or nothing runs any more, or
+ * yield is set (looked at after each round and each call of run_slow()), leaving b->rr as the loop below does. It
+ * does what the loop below does (tests/drivers/test_h8tasks.c compares the two).
  */
 #include "runfast.h"
-u8 rcx_run_fast(struct rcx *b, u8 count);
+u16 rcx_run_fast(struct rcx *b, u16 count);
 RCX_STATIC_ASSERT(rf_prog, offsetof(struct rcx, prog) == RF_PROG && offsetof(struct rcx, rr) == RF_RR);
 RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offsetof(struct rcx, yield) == RF_YIELD);
 RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
@@ -266,18 +214,13 @@ RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX
 RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR
                             && RCX_OP_SUM_VAR == RF_OP_SUM_VAR && RCX_OP_SUB_VAR == RF_OP_SUB_VAR
                             && RCX_OP_SJUMP == RF_OP_SJUMP && RCX_SRC_VAR == RF_SRC_VAR
-                            && RCX_SRC_CONST == RF_SRC_CONST);
+                            && RCX_SRC_CONST == RF_SRC_CONST && RCX_RUN_CHUNK == RF_RUN_CHUNK);
 
 u16 vm_run(struct rcx *b, u16 budget)
 {
-    u16 left = budget;
-    u8 count;
-
-    while (left && b->runmask && !b->yield) {
-        count = left > RCX_RUN_CHUNK ? RCX_RUN_CHUNK : (u8)left; /* then a look at yield */
-        left = (u16)(left - count + rcx_run_fast(b, count));
-    }
-    return (u16)(budget - left);
+    if (!budget || !b->runmask || b->yield)
+        return 0;
+    return (u16)(budget - rcx_run_fast(b, budget));
 }
 #else
 /*
@@ -365,7 +308,7 @@ leave:
     if (!count)
         return 0;
 slow:
-    run_slow(b, n, at);
+    run_slow(b, t, at);
     if (!--count || b->runmask != mask || b->yield)
         return count;
     goto next;

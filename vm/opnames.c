@@ -50,5 +50,5 @@ const struct rcx_opname *rcx_opname_find(u8 op)
 u8 rcx_prog_params(u8 op)
 {
     const struct rcx_swan_row *r = rcx_swan_find(op);
-    return r ? (u8)(r->params & 7) : rcx_op_params(op);
+    return r ? rcx_swan_params(r) : rcx_op_params(op);
 }

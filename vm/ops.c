@@ -1,57 +1,81 @@
 /*
- * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the two
- * program-only ones that do not steer control flow. Operands were length-checked by the caller; every index and
+ * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the
+ * program-only ones that do not jump (vm/interp.c runs those). Operands were length-checked by the caller; every index and
  * value is range-checked here, and an out-of-range operand makes the instruction do nothing.
  */
 #include "rcx.h"
 #include "sources.h"
+#include "access.h"
 
 /* Variable arithmetic, spec pp. 75-83, in 16 bits as firm0328 computes it (reference-firmware.md). `kind` is the
- * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart: a dense switch. */
+ * high nibble of SetVar..OrVar (0x14-0x94), which alone tells them apart (a dense switch), or one of Swan's. */
+RCX_STATIC_ASSERT(arith_nibbles, ARITH_SET == RCX_OP_SET_VAR >> 4 && ARITH_SUM == RCX_OP_SUM_VAR >> 4
+                                 && ARITH_SUB == RCX_OP_SUB_VAR >> 4 && ARITH_DIV == RCX_OP_DIV_VAR >> 4
+                                 && ARITH_MUL == RCX_OP_MUL_VAR >> 4 && ARITH_SGN == RCX_OP_SGN_VAR >> 4
+                                 && ARITH_ABS == RCX_OP_ABS_VAR >> 4 && ARITH_AND == RCX_OP_AND_VAR >> 4
+                                 && ARITH_OR == RCX_OP_OR_VAR >> 4);
+#define IS_MOD(kind) (RCX_SWAN && (kind) == ARITH_MOD)
 #if !RCX_SWAN
 static
 #endif
-s16 ops_arith(u8 kind, s16 a, s16 v)
+s16 ops_arith(s16 a, s16 v, u8 kind)
 {
+#if RCX_SWAN
+    u16 n;
+#endif
+
     switch (kind) {
-    case RCX_OP_SET_VAR >> 4: return v;
-    case RCX_OP_SUM_VAR >> 4: return (s16)(u16)((u16)a + (u16)v);
-    case RCX_OP_SUB_VAR >> 4: return (s16)(u16)((u16)a - (u16)v);
-    case RCX_OP_MUL_VAR >> 4: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
-    case RCX_OP_DIV_VAR >> 4:
+    case ARITH_SET: return v;
+#if RCX_SWAN
+    case ARITH_NEG:
+#endif
+    negate:
+        a = 0;                                   /* -v = 0 - v */
+        /* fall through */
+    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
+    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
+    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
+#if RCX_SWAN
+    case ARITH_MOD:
+#endif
+    case ARITH_DIV:
         if (v == 0)
             return a;                            /* division by zero leaves the variable */
-        if (v == -1)
-            return (s16)(u16)(0u - (u16)a);      /* -32768 / -1 = -32768, without the overflow trap */
-        return (s16)(a / v);                     /* C99 truncates toward zero, as firm0328 */
-    case RCX_OP_SGN_VAR >> 4: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
-    case RCX_OP_ABS_VAR >> 4: return v == -32768 ? 32767 : (s16)(v < 0 ? -v : v);
-    case RCX_OP_AND_VAR >> 4: return (s16)(a & v);
+        if (v == -1) {                           /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
+            if (IS_MOD(kind))
+                return 0;
+            v = a;
+            goto negate;
+        }
+        return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
+                                                           * of the dividend */
+    case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+    case ARITH_ABS:
+        if (v < 0) {
+            v = (s16)(u16)(0u - (u16)v);
+            if (v < 0)
+                v = 32767;                       /* abs(-32768) */
+        }
+        return v;
+    case ARITH_AND: return (s16)(a & v);
 #if RCX_SWAN
-    case RCX_OP_OR_VAR >> 4:  return (s16)(a | v);
+    case ARITH_OR:   return (s16)(a | v);
     /* Swan's (swan-target.md 4) */
     case ARITH_COMP:          return (s16)~v;
-    case ARITH_MOD:
-        if (v == 0)
-            return a;
-        if (v == -1)
-            return 0;                            /* -32768 % -1, without the trap */
-        return (s16)(a % v);                     /* the sign of the dividend */
     case ARITH_XOR:           return (s16)(a ^ v);
-    case ARITH_NEG:           return (s16)(u16)(0u - (u16)v);
     case ARITH_SHR:
         v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
         /* fall through */
-    case ARITH_SHL:
-        if (v < 0) {                             /* right, arithmetic: 16 or more leaves the sign */
-            u16 n = (u16)(0u - (u16)v);
-            return (s16)(a >> (n >= 16 ? 15 : n));
-        }
-        return v >= 16 ? 0 : (s16)(u16)((u16)a << v);
-    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15 */
-        if ((u16)v >= 16)
-            return a;
-        return (s16)(kind == ARITH_BSET ? (u16)a | (u16)(1u << v) : (u16)a & (u16)~(1u << v));
+    case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
+        n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
+        if (n > 16)
+            n = 16;
+        for (; n; n--)
+            a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
+        return a;
+    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15; any other v: mask 0 */
+        v = ops_arith(1, v, ARITH_SHL);
+        return (s16)(kind == ARITH_BSET ? a | v : a & ~v);
 #else
     default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
 #endif
@@ -105,13 +129,6 @@ s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins)
     return source_get(b, t, ins[1], RCX_LE16(ins + 2));
 }
 
-#if RCX_SWAN
-void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value)
-{
-    source_set(b, t, ins[1], RCX_LE16(ins + 2), value);
-}
-#endif
-
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins)
 {
     return source_get(b, t, ins[1], ins[2]);
@@ -122,7 +139,7 @@ void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins)
     s16 value = ops_source(b, t, ins + 1); /* the source one byte on */
     s16 *var = var_ref(b, t, ins[1]);
     if (var)
-        *var = ops_arith((u8)(ins[0] >> 4), *var, value); /* the toggle bit is bit 3 */
+        *var = ops_arith(*var, value, (u8)(ins[0] >> 4)); /* the toggle bit is bit 3 */
 }
 
 /*
@@ -269,6 +286,51 @@ OP(op_priority)
         t->priority = ins[1];
     (void)b;
 }
+/* Wait, and Swan's WaitMS (vm/swan.c): a task that waits costs nothing until vm_tick() wakes it. Waits run on the
+ * 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
+RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
+void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
+{
+    s16 value = ops_source(b, t, ins);
+#if RCX_SWAN
+    u8 ms = ins[0] == RCX_SW_WAIT_MS;
+#endif
+
+    if (value <= 0)
+        return;                        /* negative: ignored (spec p. 67); zero: no wait */
+#if RCX_SWAN
+    t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
+    t->wait_ms = ms;
+    b->waiting |= (u8)(ms + 1);        /* WAIT_MS or WAIT_10MS */
+#else
+    t->wake = (u16)(b->ticks10 + (u16)value);
+    b->waiting = WAIT_10MS;
+#endif
+    sched_set_state(b, t, RCX_TASK_WAITING);
+}
+OP(op_set_loop)
+{
+    s16 value;
+    /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
+    if (t->loop_depth < RCX_LOOP_LEVELS) {
+        value = ops_source8(b, t, ins);
+        t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
+    }
+}
+OP(op_gosub)
+{
+    if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
+        return;                        /* calling an empty subroutine does nothing */
+    /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
+    t->has_ret = 1;
+    t->ret_sub = t->sub;
+    t->ret_pc = t->pc;
+    t->sub = ins[1];
+    t->pc = 0;
+}
+/* ExitEventCheck (0xB0), ExitAccessControl (0xA0): bit 4 tells them apart */
+RCX_STATIC_ASSERT(exit_ops, (RCX_OP_EXIT_EVENT & 0x10) && !(RCX_OP_EXIT_ACCESS & 0x10));
+OP(op_exit) { access_input(b, t, ins[0] & 0x10 ? ACCESS_IN_EXIT_EV : ACCESS_IN_EXIT_AC); }
 OP(op_send_message)
 {
     if (t)
@@ -278,7 +340,7 @@ OP(op_send_message)
 /* Opcodes and their handlers, in two parallel arrays (3 bytes a row on the brick). */
 static const u8 op_codes[] = {
     RCX_OP_SUM_VAR, RCX_OP_SET_VAR, RCX_OP_SUB_VAR, RCX_OP_MUL_VAR, RCX_OP_DIV_VAR, RCX_OP_SGN_VAR,
-    RCX_OP_ABS_VAR, RCX_OP_AND_VAR, RCX_OP_OR_VAR,
+    RCX_OP_ABS_VAR, RCX_OP_AND_VAR, RCX_OP_OR_VAR, RCX_OP_WAIT,
     RCX_OP_PING, RCX_OP_STOP_ALL_TASKS, RCX_OP_TURN_OFF, RCX_OP_CLEAR_SOUND, RCX_OP_CLEAR_MESSAGE, RCX_OP_MUTE,
     RCX_OP_UNMUTE, RCX_OP_CLEAR_ALL_EVENTS, RCX_OP_ON_OFF_FLOAT, RCX_OP_CONNECT_DISCONNECT, RCX_OP_SET_DIRECTION,
     RCX_OP_SET_GLOBAL_DIR, RCX_OP_SET_POWER, RCX_OP_SET_MAX_POWER, RCX_OP_TX_POWER, RCX_OP_PLAY_SYSTEM_SOUND,
@@ -287,11 +349,11 @@ static const u8 op_codes[] = {
     RCX_OP_CLEAR_COUNTER, RCX_OP_MESSAGE, RCX_OP_SET_WATCH, RCX_OP_SET_SENSOR_TYPE, RCX_OP_SET_SENSOR_MODE,
     RCX_OP_SET_DATALOG, RCX_OP_DATALOG_NEXT, RCX_OP_SEND_UART, RCX_OP_DIRECT_EVENT, RCX_OP_SELECT_DISPLAY,
     RCX_OP_VIEW_SOURCE, RCX_OP_SET_EVENT, RCX_OP_CALIBRATE_EVENT, RCX_OP_SET_SOURCE, RCX_OP_SET_PRIORITY,
-    RCX_OP_SEND_MESSAGE,
+    RCX_OP_SEND_MESSAGE, RCX_OP_SET_LOOP, RCX_OP_GOSUB, RCX_OP_EXIT_EVENT, RCX_OP_EXIT_ACCESS,
 };
 static op_fn *const op_fns[] = {
     ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
-    ops_var, ops_var, ops_var,
+    ops_var, ops_var, ops_var, ops_wait,
     op_ping, op_stop_all, op_turn_off, op_clear_sound, op_clear_message, op_mute,
     op_mute, op_clear_events, op_motors, op_motors, op_motors,
     op_motors, set_power, set_power, op_tx_power, op_system_sound,
@@ -300,19 +362,18 @@ static op_fn *const op_fns[] = {
     op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,
     op_datalog, op_log, op_uart, op_event, op_view,
     op_user_view, op_set_event, op_calibrate, op_set_source, op_priority,
-    op_send_message,
+    op_send_message, op_set_loop, op_gosub, op_exit, op_exit,
 };
 RCX_STATIC_ASSERT(op_rows_match, sizeof op_codes == sizeof op_fns / sizeof op_fns[0]);
 
-u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
+void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     u8 op = (u8)(ins[0] & ~RCX_TOGGLE), i;
 
     for (i = 0; i < sizeof op_codes; i++) {
         if (op_codes[i] == op) {
             op_fns[i](b, t, ins);
-            return 1;
+            return;
         }
     }
-    return 0;
 }

@@ -143,6 +143,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply);
 /* Tasks and programs (vm/sched.c). */
 void sched_start_task(struct rcx *b, u8 n);
 void sched_stop_task(struct rcx *b, u8 n);
+void sched_stop(struct rcx *b, struct rcx_task *t); /* the same for a task by its address */
 void sched_set_state(struct rcx *b, struct rcx_task *t, u8 state); /* and t's bit of runmask: set only when RUNNING */
 void sched_stop_all(struct rcx *b);
 void sched_select_program(struct rcx *b, u8 prog, u8 from_program);
@@ -168,30 +169,21 @@ void datalog_set(struct rcx *b, u16 entries);
 void datalog_add(struct rcx *b, const struct rcx_task *t, u8 src, u8 index);
 s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out); /* bytes written, -1 when refused */
 
-/* Instructions shared by programs and direct commands (vm/ops.c); 0 when the opcode is not one of them. */
-u8 ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
-/* a op v for `kind`: the high nibble of SetVar..OrVar (1-9), or one of Swan's below */
-#define ARITH_SET (RCX_OP_SET_VAR >> 4)
-#define ARITH_COMP 10
-#define ARITH_MOD 11
-#define ARITH_XOR 12
-#define ARITH_SHL 13
-#define ARITH_SHR 14
-#define ARITH_NEG 15
-#define ARITH_BSET 16
-#define ARITH_BCLR 17
+/* Instructions shared by programs and direct commands, and the program's that do not jump (vm/ops.c); any other
+ * opcode does nothing. */
+void ops_exec(struct rcx *b, struct rcx_task *t, const u8 *ins);
 #if RCX_SWAN
-s16 ops_arith(u8 kind, s16 a, s16 v); /* static (inlined) in a build without Swan's programs */
+s16 ops_arith(s16 a, s16 v, u8 kind); /* a op v for kind ARITH_* (rcx_opcodes.h); static (inlined) without Swan */
 #endif
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
-/* Swan's opcodes (vm/swan.c): run the instruction of row r; nonzero when the task must stop. */
-u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
+/* Swan's opcodes (vm/swan.c): run the instruction of row r (a stack overflow or underflow stops the task). */
+void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
 void swan_download_done(struct rcx *b); /* the last block came: the object's size, then its slot's kind */
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
+void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's WaitMS */
 /* The commonest operand: a source in ins[1], its 16-bit index (little-endian) at ins + 2. */
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
-void ops_store(struct rcx *b, struct rcx_task *t, const u8 *ins, s16 value); /* into that source, if writable */
 
 #endif

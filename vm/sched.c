@@ -29,14 +29,18 @@ void sched_start_task(struct rcx *b, u8 n)
     sched_set_state(b, t, RCX_TASK_RUNNING);
 }
 
-void sched_stop_task(struct rcx *b, u8 n)
+void sched_stop(struct rcx *b, struct rcx_task *t)
 {
-    struct rcx_task *t;
-
-    if (n >= RCX_TASKS || (t = &b->task[n])->state == RCX_TASK_IDLE)
+    if (t->state == RCX_TASK_IDLE)
         return;
     sched_set_state(b, t, RCX_TASK_IDLE);
     events_task_ended(b, t);
+}
+
+void sched_stop_task(struct rcx *b, u8 n)
+{
+    if (n < RCX_TASKS)
+        sched_stop(b, &b->task[n]);
 }
 
 /* One place keeps runmask in step with the states (a shift by a variable count is a loop on the H8/300: written

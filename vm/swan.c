@@ -10,77 +10,97 @@
 
 #if RCX_SWAN
 
-/* + - * / & | ~ %: a family's low three bits; then SW_SET ... SW_NEG */
-static const u8 arith_of[8 + SW_NEG - SW_SET + 1] = {
-    RCX_OP_SUM_VAR >> 4, RCX_OP_SUB_VAR >> 4, RCX_OP_MUL_VAR >> 4, RCX_OP_DIV_VAR >> 4, RCX_OP_AND_VAR >> 4,
-    RCX_OP_OR_VAR >> 4, ARITH_COMP, ARITH_MOD,
-    ARITH_SET, RCX_OP_ABS_VAR >> 4, RCX_OP_SGN_VAR >> 4, ARITH_BSET, ARITH_BCLR, ARITH_XOR, ARITH_SHL, ARITH_SHR,
-    ARITH_NEG,
+/* + - * / & | ~ %: a family's operation, from its low three bits */
+static const u8 arith_of[8] = {
+    ARITH_SUM, ARITH_SUB, ARITH_MUL, ARITH_DIV, ARITH_AND, ARITH_OR, ARITH_COMP, ARITH_MOD,
 };
 
-u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
+/* ClearAll's flags: 0x01 timers (both kinds), 0x02 inputs, 0x04 variables, 0x08 task stacks, 0x10 events,
+ * 0x40 datalog; 0x20 breakpoints: OpenRCX has none */
+static void clear_all(struct rcx *b, u8 f)
 {
-    u8 op = ins[0], kind = r->kind, f = arith_of[op & 7], i;
-    s16 v;
+    struct rcx_task *t;
+    u8 i;
 
-    if (kind == SW_GLOBAL) {           /* op g k8 / op g H L / op g T v8 */
-        s16 *g = &b->global[ins[1]];
-        v = ins[2];                    /* byte constants are unsigned */
-        if (r->params & 1)             /* four bytes: a word high byte first, or a source */
-            v = (op & 0x80) || op == RCX_SW_SET_G ? ops_source8(b, t, ins + 1) : (s16)(u16)((u16)ins[2] << 8 | ins[3]);
-        if (!(op & 0x40))
-            f = ARITH_SET;             /* 0x2B-0x2D */
-        *g = ops_arith(f, *g, v);
-        return 0;
-    }
-    if (kind <= SW_NEG) {              /* op Td d16 Ts s16 */
-        v = ops_source(b, t, ins + 3);
-        if (kind != SW_SOURCE)
-            f = arith_of[8 + kind - SW_SET];
-        ops_store(b, t, ins, ops_arith(f, ops_source(b, t, ins), v));
-        return 0;
-    }
-    if (kind == SW_CLEAR_ALL) {
-        f = ins[1];
-        for (i = 0; i < RCX_TASKS; i++) {
-            if (f & 0x01 && i < RCX_TIMERS) { /* timers, both kinds */
-                b->timer[i] = 0;
-                b->ms_base[i] = b->ms_now;
-            }
-            if (f & 0x02 && i < RCX_SENSORS)
-                sensor_clear(b, i);
-            if (f & 0x08)
-                b->task[i].stack = 0;
+    if (f & 0x01)
+        for (i = 0; i < RCX_TIMERS; i++) {
+            b->timer[i] = 0;
+            b->ms_base[i] = b->ms_now;
         }
-        if (f & 0x04)
-            memset(b->global, 0, sizeof b->global);
-        if (f & 0x10)
-            events_clear_all(b);
-        if (f & 0x40)
-            b->log_size = b->log_count = 0; /* no datalog; 0x20 breakpoints: OpenRCX has none */
-        return 0;
-    }
-    if (kind <= SW_POP) {              /* the stack's depth; overflow and underflow are bad input: the task stops */
-        v = (s16)(t->stack + (kind == SW_PUSH ? 1 : -(s16)ins[1]));
-        if ((u16)v > RCX_SWAN_STACK)
-            return 1;
-        t->stack = (u8)v;
-        return 0;
-    }
-    /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 */
-    i = ins[1];
-    v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+    if (f & 0x02)
+        for (i = 0; i < RCX_SENSORS; i++)
+            sensor_clear(b, i);
+    if (f & 0x04)
+        memset(b->global, 0, sizeof b->global);
+    if (f & 0x08)
+        for (t = b->task; t < b->task + RCX_TASKS; t++)
+            t->stack = 0;
+    if (f & 0x10)
+        events_clear_all(b);
+    if (f & 0x40)
+        b->log_size = b->log_count = 0;
+}
+
+/* Push (0xE3) and pop (0x01 n) change the stack's depth; overflow and underflow are bad input: the task stops. */
+static void stack(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
+{
+    s16 depth = (s16)(t->stack + (kind == SW_PUSH ? 1 : -(s16)ins[1]));
+
+    if ((u16)depth > RCX_SWAN_STACK)
+        sched_stop(b, t);
+    else
+        t->stack = (u8)depth;
+}
+
+/* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
+static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
+{
+    u8 m = ins[1];
+    s16 v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+
     if (kind >= SW_SEND_PARAM) {
-        i = (u8)ops_source8(b, t, ins);
+        m = (u8)ops_source8(b, t, ins);
         v = ops_source(b, t, ins + 2);
         if (kind == SW_SEND_PARAM) {
-            remote_send_message_param(b, i, v);
-            return 0;
+            remote_send_message_param(b, m, v);
+            return;
         }
     }
     b->msg_param = v;                  /* first, so that the events the message raises find it */
-    ops_set_message(b, i);
-    return 0;
+    ops_set_message(b, m);
+}
+
+void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
+{
+    u8 kind = rcx_swan_kind(r), f;
+    s16 v, *g;
+
+    if (kind >= SW_SOURCE) {           /* op Td d16 Ts s16: the operation is the row's, or the family's */
+        v = ops_source(b, t, ins + 3);
+        f = (u8)(kind - SW_SOURCE);
+        if (!f)
+            f = arith_of[ins[0] & 7];
+        source_set(b, t, ins[1], RCX_LE16(ins + 2), ops_arith(ops_source(b, t, ins), v, f));
+        return;
+    }
+    if (kind >= SW_K8) {               /* op g k8 / op g H L / op g T v8 */
+        v = ins[2];                    /* byte constants are unsigned */
+        if (kind == SW_WORD)           /* high byte first */
+            v = (s16)(u16)((u16)ins[2] << 8 | ins[3]);
+        if (kind == SW_SRC8)
+            v = ops_source8(b, t, ins + 1);
+        g = &b->global[ins[1]];
+        *g = ops_arith(*g, v, ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET); /* 0x2B-0x2D: = */
+        return;
+    }
+    if (kind == SW_WAIT_MS)
+        ops_wait(b, t, ins);
+    else if (kind == SW_CLEAR_ALL)
+        clear_all(b, ins[1]);
+    else if (kind <= SW_POP)
+        stack(b, t, ins, kind);
+    else
+        message(b, t, ins, kind);
 }
 
 /*
@@ -90,30 +110,31 @@ u8 swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_
  */
 RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
+/* 1 when the code of a slot (its objects start at `at`) has a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not)
+ * with source 43 or 44; each object is walked from its start, instruction by instruction. */
+static u8 swan_code(const u8 *arena, const u16 *at)
+{
+    const u16 *last = at + RCX_SLOT_OBJS;
+    const u8 *p, *end;
+    u8 op, check;
+
+    for (; at != last; at++)
+        for (p = arena + at[0], end = arena + at[1]; p < end; p += 1 + rcx_op_params(op)) { /* toggle bit folded */
+            op = *p;
+            if (rcx_swan_find(op))
+                return 1;
+            check = (u8)(op & 0xE7);
+            if (check == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
+                return 1;
+        }
+    return 0;
+}
+
 void swan_download_done(struct rcx *b)
 {
-    u8 obj = b->dl.obj, slot = 0, n = RCX_SLOT_OBJS, op;
-    const u8 *p, *end;
+    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS); /* one divxu */
 
-    mem_resize(b, obj, b->dl.filled);
-    while (obj >= RCX_SLOT_OBJS) {     /* obj / 18 without a division */
-        obj = (u8)(obj - RCX_SLOT_OBJS);
-        slot++;
-    }
-    b->swan[slot] = 0;
-    obj = (u8)(b->dl.obj - obj);       /* the slot's first object */
-    do {
-        p = b->arena + b->obj_start[obj];
-        end = b->arena + b->obj_start[++obj];
-        while (p < end) {
-            op = *p;
-            /* a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not) with source 43 or 44 */
-            if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && end - p > 2 && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))) {
-                b->swan[slot] = 1;
-                return;
-            }
-            p += 1 + rcx_op_params((u8)(op & ~RCX_TOGGLE));
-        }
-    } while (--n);
+    mem_resize(b, b->dl.obj, b->dl.filled);
+    b->swan[slot] = swan_code(b->arena, &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]);
 }
 #endif

@@ -5,13 +5,14 @@
 ; 3.4 cannot keep a task switch, or a lone task's position, in registers; here a switch costs a look-up of the
 ; task's code object, and a lone task keeps its position in registers from one byte code to the next.
 ;
-; u8 rcx_run_fast(struct rcx *b, u8 count)
-;   count 1-255; b->runmask is not 0. Visits the running tasks from task b->rr on, round after round, and returns
-;   the byte codes left of count once it has run `count`, or nothing runs any more, or b->yield is set (looked at
-;   after each round and each run_slow()); b->rr is then the task after the last one run, as vm_run() leaves it.
+; u16 rcx_run_fast(struct rcx *b, u16 count)
+;   count at least 1; b->runmask is not 0. Visits the running tasks from task b->rr on, round after round (a lone
+;   task: RF_RUN_CHUNK byte codes a round at most), and returns the byte codes left of count once it has run `count`,
+;   or nothing runs any more, or b->yield is set (looked at after each round and each run_slow()); b->rr is then the
+;   task after the last one run, as vm_run() leaves it.
 ;
-; Registers: r6 = b, r5 = the task, r4h = byte codes the task may still run in this turn (1, or all of count for a
-; lone task), r4l = its code object's number in the task's own body (prog * 18 + 8 + n; the opcode while a byte
+; Registers: r6 = b, r5 = the task, r4h = byte codes the task may still run in this turn (1, or up to RF_RUN_CHUNK
+; for a lone task), r4l = its code object's number in the task's own body (prog * 18 + 8 + n; the opcode while a byte
 ; code runs), r3 = runmask >> n (then >> n + 1); during a turn: r1 = the byte code's address, r2 = the end of the
 ; code (both absolute), r0 and r3 scratch. On the stack (F_*): what is left of count besides r4h, where the code
 ; starts, its obj_start entry, r3 and r4l kept over a turn, prog * 18 + 8 (task 0's body).
@@ -33,7 +34,7 @@ _rcx_run_fast:
 	mov.w	r4,@-r7
 	mov.w	r5,@-r7
 	mov.w	r6,@-r7
-	mov.w	r1,@-r7			; F_LEFT: count (its low byte)
+	mov.w	r1,@-r7			; F_LEFT: count
 	mov.w	r0,r6
 	mov.b	@(RF_PROG,r6),r0l
 	mov.b	#RF_SLOT_OBJS,r0h
@@ -74,13 +75,20 @@ insub:	mov.b	@(F_BASE,r7),r1l	; a subroutine: prog * 18 + sub
 	add.b	r1l,r0l
 	bra	object
 
-alone:	mov.b	@(F_LEFT+1,r7),r4h	; a lone task's turn: all that is left
-	sub.b	r0l,r0l
-	mov.b	r0l,@(F_LEFT+1,r7)
+alone:	mov.w	@(F_LEFT,r7),r0		; a lone task's turn: what is left, up to RF_RUN_CHUNK (then a look at yield)
+	mov.b	#RF_RUN_CHUNK,r4h
+	mov.w	#RF_RUN_CHUNK,r2
+	cmp.w	r2,r0
+	bcc	1f
+	mov.b	r0l,r4h
+1:	sub.b	r4h,r0l
+	subx	#0,r0h
+	mov.w	r0,@(F_LEFT,r7)
+	sub.w	r3,r3			; no other task after this one
 	bra	visit1
-visit:	mov.b	@(F_LEFT+1,r7),r0l	; a turn of one byte code
-	dec	r0l
-	mov.b	r0l,@(F_LEFT+1,r7)
+visit:	mov.w	@(F_LEFT,r7),r0		; a turn of one byte code
+	subs	#1,r0
+	mov.w	r0,@(F_LEFT,r7)
 	mov.b	#1,r4h
 visit1:	mov.w	r3,@(F_MASK,r7)
 	mov.b	r4l,@(F_OBJ,r7)
@@ -163,9 +171,7 @@ dispatch:
 	beq	sjump
 #if RCX_SWAN
 	cmp.b	#RF_SW_SUM_GB,r4l	; Swan's x++ (sumgb g, 1) before RCX 2.0's: as fast as SumVar's
-	bne	1f
-	.word	0x5A00,k8add		; jmp @k8add
-1:
+	beq	gform
 #endif
 	cmp.b	#RF_OP_SUM_VAR,r4l
 	beq	var
@@ -173,10 +179,33 @@ dispatch:
 	beq	var
 	cmp.b	#RF_OP_SUB_VAR,r4l
 	beq	var
-#if RCX_SWAN
-	.word	0x5A00,swan		; jmp @swan: Swan's global forms, or slow
-#else
+#if !RCX_SWAN
 	bra	slow			; any other
+#else
+; Swan's assignments and sums on a global, as SetVar/SumVar/SubVar: 0x2B 0x48 0x49 op g k8, 0x2C op g H L (a word, high
+; byte first), 0x2D 0xC8 0xC9 op g T v8 (a constant or a global source). r4l becomes that opcode for apply, r0 the
+; global's offset, r3 the value; r1 moves on only once the instruction is known to end before the code does. Every
+; form is checked for four bytes and one more byte code after them (a k8 form with exactly one byte after it runs
+; through run_slow(), as any other opcode that comes here). 0x48 (x++) is decoded here, the others at decode.
+gform:	mov.w	r1,r3
+	adds	#2,r3
+	adds	#2,r3
+	cmp.w	r2,r3
+	bcc	sslow
+	mov.b	@(1,r1),r0l		; g
+	mov.b	@(2,r1),r3l		; k8, the word's high byte, or T
+	sub.b	r3h,r3h
+	cmp.b	#RF_SW_SUM_GB,r4l
+	bne	gdec
+	mov.b	#RF_OP_SUM_VAR,r4l
+	adds	#2,r1
+	adds	#1,r1
+gref:	mov.b	#0,r0h			; the global at @(RF_GLOBAL,r0)
+	add.w	r0,r0
+	add.w	r6,r0
+	bra	apply
+gdec:	.word	0x5A00,decode		; jmp @decode
+sslow:	.word	0x5A00,slow		; jmp @slow
 #endif
 
 sjump:	mov.w	r1,r3
@@ -207,12 +236,14 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 	sub.w	r0,r1
 	mov.w	r1,@(RF_PC,r5)
 	mov.b	@(F_OBJ,r7),r4l
-	mov.b	@(F_LEFT+1,r7),r0l
+	mov.w	@(F_LEFT,r7),r0
 	beq	over			; count run
 	mov.w	@(F_MASK,r7),r3
 	beq	1f
 	.word	0x5A00,next		; jmp @next: more running tasks after this one
-1:	mov.w	@(RF_RUNMASK,r6),r0	; the end of a round: a lone task runs on from here
+1:	mov.b	@(RF_YIELD,r6),r0l	; the end of a round
+	bne	over
+	mov.w	@(RF_RUNMASK,r6),r0	; a lone task runs on from here
 	mov.w	r0,r3
 	subs	#1,r0
 	and.b	r3l,r0l
@@ -220,26 +251,23 @@ leave:	mov.w	@(F_CODE,r7),r0		; the turn is over: the task's pc
 	mov.w	r0,r0
 	bne	2f
 	.word	0x5A00,alone		; jmp @alone
-2:	mov.b	@(RF_YIELD,r6),r0l
-	bne	over
-	.word	0x5A00,round0		; jmp @round0
+2:	.word	0x5A00,round0		; jmp @round0
 
 slow:	mov.w	@(F_CODE,r7),r0		; the task's pc where the byte code is
 	sub.w	r0,r1
 	mov.w	r1,@(RF_PC,r5)
 	mov.b	@(F_OBJ,r7),r4l
-ended:	mov.b	@(F_BASE,r7),r0l	; run_slow(b, n, &b->obj_start[object])
-	mov.b	r4l,r1l
-	sub.b	r0l,r1l
+ended:	mov.w	r5,r1			; run_slow(b, t, &b->obj_start[object])
 	mov.w	@(F_AT,r7),r2
 	mov.w	r6,r0
 	.word	0x5E00,_run_slow	; jsr @_run_slow (r4-r6 survive it)
 	dec	r4h
-	mov.b	@(F_LEFT+1,r7),r0l
+	mov.w	@(F_LEFT,r7),r0
 	add.b	r4h,r0l			; all that is left
-	mov.b	r0l,@(F_LEFT+1,r7)
+	addx	#0,r0h
+	mov.w	r0,@(F_LEFT,r7)
 	sub.b	r4h,r4h
-	mov.b	r0l,r0l
+	mov.w	r0,r0
 	beq	over
 	mov.w	@(RF_RUNMASK,r6),r0
 	beq	over			; nothing runs any more
@@ -260,81 +288,45 @@ over:	inc	r4l			; b->rr: the task after this one
 	mov.b	r4l,@(RF_RR,r6)
 	mov.w	@r7+,r0			; F_LEFT
 	add.b	r4h,r0l			; the byte codes left
-	sub.b	r0h,r0h
+	addx	#0,r0h
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
 
 #if RCX_SWAN
-; Swan's assignments and sums on a global (0x2B 0x2C 0x2D, 0x48 0x49, 0xC8 0xC9: = += -= with a byte, a word high
-; byte first, or a constant or global source), as SetVar/SumVar/SubVar: r4l becomes that opcode for apply, r0 the
-; global's offset, r3 the value; r1 moves on only once the instruction is known to end before the code does.
-swan:	cmp.b	#RF_SW_SET_GB,r4l
-	beq	k8set
-	cmp.b	#RF_SW_SUB_GB,r4l
-	beq	k8sub
-	cmp.b	#RF_SW_SUM_G,r4l
-	beq	srcadd
-	cmp.b	#RF_SW_SET_G,r4l
-	beq	srcset
-	cmp.b	#RF_SW_SUB_G,r4l
-	beq	srcsub
-	cmp.b	#RF_SW_SET_GW,r4l
+; The rest of Swan's global forms (gform): 0x49 0xC8 0xC9 and 0x2B-0x2D, and any other opcode, which goes to run_slow().
+decode:	mov.b	r4l,r0h			; the opcode
+	mov.b	#RF_OP_SET_VAR,r4l	; 0x2B 0x2C 0x2D: SetVar
+	cmp.b	#RF_SW_SET_GB,r0h
+	beq	k8
+	cmp.b	#RF_SW_SET_G,r0h
+	beq	src
+	cmp.b	#RF_SW_SET_GW,r0h
 	beq	word
-	bra	sslow			; any other
-k8set:	mov.b	#RF_OP_SET_VAR,r4l
-	bra	k8
-k8sub:	mov.b	#RF_OP_SUB_VAR,r4l
-	bra	k8
-k8add:	mov.b	#RF_OP_SUM_VAR,r4l
-k8:	mov.b	@(1,r1),r0l		; g
-	mov.w	r1,r3			; op g k8: 3 bytes, and one more byte code after them
-	adds	#2,r3
-	adds	#1,r3
-	cmp.w	r2,r3
-	bcc	sslow
-	mov.b	@(2,r1),r3l		; byte constants are unsigned
-	mov.b	#0,r3h
-	adds	#2,r1
-	adds	#1,r1
-	bra	gref
-sslow:	.word	0x5A00,slow		; jmp @slow, within reach of the branches around it
-word:	mov.b	#RF_OP_SET_VAR,r4l	; setgw g H L: 4 bytes
-	mov.b	@(1,r1),r0l
-	mov.w	r1,r3
-	adds	#2,r3
-	adds	#2,r3
-	cmp.w	r2,r3
-	bcc	sslow
-	mov.b	@(2,r1),r3h
+	mov.b	#RF_OP_SUM_VAR,r4l	; 0x49 0xC8 0xC9: the low bit subtracts (SubVar 0x34 is SumVar 0x24 + 0x10),
+	bld	#0,r0h			; bit 7 takes a source
+	bst	#4,r4l
+	bclr	#0,r0h
+	cmp.b	#RF_SW_SUM_GB,r0h
+	beq	k8
+	cmp.b	#RF_SW_SUM_G,r0h
+	beq	src
+dslow:	.word	0x5A00,slow		; jmp @slow
+word:	mov.b	r3l,r3h			; the word, high byte first
 	mov.b	@(3,r1),r3l
 	bra	gnext
-srcset:	mov.b	#RF_OP_SET_VAR,r4l
-	bra	src
-srcsub:	mov.b	#RF_OP_SUB_VAR,r4l
-	bra	src
-srcadd:	mov.b	#RF_OP_SUM_VAR,r4l
-src:	mov.b	@(1,r1),r0l		; op g T v8: 4 bytes; T a constant or a global, else run_slow()
-	mov.w	r1,r3
-	adds	#2,r3
-	adds	#2,r3
-	cmp.w	r2,r3
-	bcc	sslow
+src:	mov.b	r3l,r0h			; T, and v8 (r3h is 0)
 	mov.b	@(3,r1),r3l
-	mov.b	#0,r3h
-	mov.b	@(2,r1),r0h
 	cmp.b	#RF_SRC_CONST,r0h
 	beq	gnext
 	cmp.b	#RF_SRC_GLOBAL,r0h
-	bne	sslow
+	bne	dslow
 	add.w	r3,r3
 	add.w	r6,r3
 	mov.w	@(RF_GLOBAL,r3),r3
-gnext:	adds	#2,r1
-	adds	#2,r1
-gref:	mov.b	#0,r0h			; the global at @(RF_GLOBAL,r0)
-	add.w	r0,r0
-	add.w	r6,r0
-	.word	0x5A00,apply		; jmp @apply
+gnext:	adds	#1,r1			; four bytes
+k8:	adds	#2,r1			; three bytes
+	adds	#1,r1
+	.word	0x5A00,gref		; jmp @gref
 #endif

@@ -32,6 +32,7 @@
 #define RF_GLOBALS 32      /* RCX_GLOBALS */
 #define RF_LOCALS 16       /* RCX_LOCALS */
 #define RF_TOGGLE 0x08     /* RCX_TOGGLE */
+#define RF_RUN_CHUNK 40    /* RCX_RUN_CHUNK */
 #define RF_OP_SET_VAR 0x14
 #define RF_OP_SUM_VAR 0x24
 #define RF_OP_SUB_VAR 0x34

@@ -14,13 +14,6 @@ if [ ! -x "$bench" ] || [ -z "$nm" ] || [ ! -f "$fw/drivers/openrcx.srec" ]; the
 fi
 "$bench" "$fw/drivers/openrcx" "$nm"
 rc=$?
-# The image with Swan's programs (issue 16; not downloadable yet, over the memory floor), next to it: its figures
-# with the Swan x++ loop.
-swan="$(dirname "$fw")/h8swan"
-if [ $rc -ne 1 ] && [ -f "$swan/drivers/openrcx.srec" ]; then
-    echo "the same for the image with Swan's programs ($swan):"
-    "$bench" "$swan/drivers/openrcx" "$nm" | grep -E "busy task|Swan|nothing to do"
-fi
 [ $rc -eq 3 ] && echo "firmware bench: below the goal of 30 000 byte codes/s (not a failure of make bench)"
 [ $rc -eq 3 ] && exit 0
 exit $rc

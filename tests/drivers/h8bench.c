@@ -318,7 +318,7 @@ int main(int argc, char **argv)
             printf("  Swan, 1 task     %6.0f byte codes/s (%5.0f x++/s)  nqc -TSwan: sumgb + jmp; goal: the RCX 2.0 "
                    "x++/s above\n", swan.rate, swan.rate / 2);
         else
-            printf("  Swan, 1 task     not in this image (RCX_SWAN 0; build/h8swan has them)\n");
+            printf("  Swan, 1 task     not in this image (built with RCX_IMAGE_SWAN=OFF)\n");
         printf("  nothing to do    %6.1f %% of the CPU every millisecond  goal <= 8 %% (most of them skipped: "
                "rt_quiet)\n", 100 * one.idle_share);
         printf("  ping while busy  %.1f ms (1 task), %.1f ms (9 tasks) from its last byte to the reply; bound 30 ms\n",
