@@ -22,6 +22,7 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
 {
 #if RCX_SWAN
     u16 n;
+    s16 m = 0;                                   /* the variable, while a is a bit's mask */
 #endif
 
     switch (kind) {
@@ -66,16 +67,19 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
     case ARITH_SHR:
         v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
         /* fall through */
+    default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
+        m = a;
+        a = 1;
+        /* fall through */
     case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
         n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
         if (n > 16)
             n = 16;
         for (; n; n--)
             a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
-        return a;
-    default:                                     /* ARITH_BSET, ARITH_BCLR: bit v, 0-15; any other v: mask 0 */
-        v = ops_arith(1, v, ARITH_SHL);
-        return (s16)(kind == ARITH_BSET ? a | v : a & ~v);
+        if (kind < ARITH_BSET)
+            return a;
+        return (s16)(kind == ARITH_BSET ? m | a : m & ~a);
 #else
     default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
 #endif
