@@ -17,41 +17,35 @@ RCX_STATIC_ASSERT(block_reply_fits, IR_RX_MAX + 2 <= IR_BUF_SIZE); /* a 0x45 blo
 
 static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
-/* Nonzero while a packet goes out. A tail call rather than `||`, which would keep its 0 or 1 across the call. */
-static u8 sending(struct rcx_brick *k)
+u8 ir_busy(struct rcx_brick *k)
 {
-    if (k->ir.tx_pos < k->ir.tx_total)
+    if (k->ir.echo || k->ir.tx_pos < k->ir.tx_total)
         return 1;
     return hal_ir_busy(&k->vm);
-}
-
-u8 ir_idle(struct rcx_brick *k)
-{
-    return (u8)(!k->ir.echo && !sending(k));
 }
 
 /* A value byte whose complement checked out. Out of line, so that ir_byte() stays within the reach of the H8's short
  * branches. */
 static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
 {
-    u8 op;
+    u8 n = ir->rx_len;
 
-    if (ir->rx_len == ir->rx_need) { /* the checksum */
+    if (n == ir->rx_need) { /* the checksum */
         ir->rx_state = v == ir->rx_sum ? IR_RX_READY : IR_RX_IDLE;
         return;
     }
-    if (ir->rx_len >= ir->reply_at) /* over the last reply: it is gone */
+    if (n >= ir->reply_at) /* over the last reply: it is gone */
         ir->last_op = RCX_OP_MESSAGE;
-    ir->rx[ir->rx_len++] = v;
+    ir->rx[n++] = v;
+    ir->rx_len = n;
     ir->rx_sum = (u8)(ir->rx_sum + v);
     ir->rx_state = IR_RX_VALUE;
-    op = (u8)(ir->rx[0] & (u8)~RCX_TOGGLE);
-    if (ir->rx_len == 1) {
-        v = (u8)(op & 7);          /* rcx_op_nominal_params(), in byte arithmetic */
+    if (n == 1) {                  /* v is the opcode */
+        v &= 7;                    /* rcx_op_nominal_params(), in byte arithmetic */
         if (v >= 6)
             v = (u8)(v - 6);
         ir->rx_need = (u8)(v + 1);
-    } else if (ir->rx_len == 5 && op == RCX_OP_CONTINUE_DL) {
+    } else if (n == 5 && (u8)(ir->rx[0] | RCX_TOGGLE) == (RCX_OP_CONTINUE_DL | RCX_TOGGLE)) {
         if (ir->rx[4] || ir->rx[3] > IR_BLOCK_MAX)
             ir->rx_state = IR_RX_DRAIN;
         ir->rx_need = (u8)(6 + ir->rx[3]); /* + data + block checksum */
@@ -64,7 +58,7 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
     struct rcx_ir *ir = &k->ir;
     u8 st;
 
-    if (!ir_idle(k)) { /* our own transmission coming back */
+    if (ir_busy(k)) { /* our own transmission coming back */
         if (ir->echo)
             ir->echo--;
         return;
@@ -114,7 +108,7 @@ void ir_tick(struct rcx_brick *k)
     if (quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
         ir->rx_state = IR_RX_IDLE;
     /* An echo byte lost (or garbled into nothing) must not deafen the receiver for good. */
-    if (ir->echo && !sending(k)) {
+    if (ir->echo && k->ir.tx_pos >= k->ir.tx_total && !hal_ir_busy(&k->vm)) { /* nothing being sent */
         if (++ir->echo_quiet >= IR_ECHO_MS)
             ir->echo = 0;
     } else {
@@ -181,6 +175,7 @@ static void execute(struct rcx_brick *k)
 void ir_poll(struct rcx_brick *k)
 {
     u8 n, len = 0;
+    u16 pos;
 
     if (k->ir.range != k->vm.tx_range) {
         k->ir.range = k->vm.tx_range;
@@ -195,7 +190,7 @@ void ir_poll(struct rcx_brick *k)
             k->ir.tx_pack = IR_PACK_STANDARD;
             k->ir.tx_mode = 0;
         } else if ((k->vm.remote.tx_len || (RCX_SWAN && k->vm.remote.follow)) && k->ir.rx_state == IR_RX_IDLE &&
-                   k->ir.quiet >= IR_SENSE_MS && ir_idle(k)) {
+                   k->ir.quiet >= IR_SENSE_MS && !ir_busy(k)) {
 #if RCX_SWAN
             if (!k->vm.remote.tx_len)
                 remote_sent(&k->vm); /* the message after its parameter, now that the room is quiet (vm/remote.h) */
@@ -214,12 +209,14 @@ void ir_poll(struct rcx_brick *k)
             tx_start(k, len);
     }
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
-    if (!sending(k) || hal_ir_busy(&k->vm))
+    if (k->ir.tx_pos >= k->ir.tx_total || hal_ir_busy(&k->vm))
         return;
     n = 0;
+    pos = k->ir.tx_pos;
     do
-        k->ir.rx[n++] = framed(k, k->ir.tx_pos++);
-    while (n < IR_CHUNK && k->ir.tx_pos < k->ir.tx_total);
+        k->ir.rx[n++] = framed(k, pos++);
+    while (n < IR_CHUNK && pos < k->ir.tx_total);
+    k->ir.tx_pos = pos;
     k->ir.echo = (u16)(k->ir.echo + n);
     hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);
 }

@@ -93,6 +93,7 @@ void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies an
 #define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
 #define ir_poll_due(k) ((k)->ir.tx_pos < (k)->ir.tx_total || (k)->ir.rx_state == IR_RX_READY || \
                         (k)->vm.remote.tx_len || (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
-u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */
+u8 ir_busy(struct rcx_brick *k);   /* nonzero while something is being sent or an echo is outstanding */
+#define ir_idle(k) (!ir_busy(k))
 
 #endif

@@ -90,7 +90,7 @@ void ui_poll(struct rcx_brick *k)
     }
     off = k->ui.off;
     /* A PBTurnOff from the host is acknowledged first: the reply and its echo have to be through. */
-    if (!off || !ir_idle(k))
+    if (!off || ir_busy(k))
         return;
     if (off == UI_OFF_ASKED) {
         k->ui.off = UI_OFF_CLICKING;

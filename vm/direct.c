@@ -56,9 +56,9 @@ static void release(struct rcx *b, u8 id)
 /* 0x25, 0x35: opcode, 0, number, 0, size(2). */
 static u8 begin_download(struct rcx *b, const u8 *cmd)
 {
-    u8 op = (u8)(cmd[0] & ~RCX_TOGGLE), id = cmd[2];
+    u8 id = cmd[2];
 
-    if (op == RCX_OP_BEGIN_TASK)
+    if (!(cmd[0] & 0x10))          /* BeginOfTask 0x25, not BeginOfSub 0x35 */
         id = (u8)(id < RCX_TASKS ? id + RCX_SUBS : 0xFF);
     else if (id >= RCX_SUBS)
         id = 0xFF;
@@ -107,8 +107,8 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
         return DL_BLOCK_ERROR;     /* more code than BeginOfTask/Sub announced */
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
-    b->dl.expect++;
-    memcpy(b->arena + at, cmd + 5, count);
+    b->dl.expect = (u16)(seq + 1); /* (after the last block, 0, nothing more is expected) */
+    memcpy(b->arena + at, end - count, count);
     if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
 #if RCX_SWAN
