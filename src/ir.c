@@ -160,7 +160,6 @@ static void execute(struct rcx_brick *k)
 
     k->ir.rx_state = IR_RX_IDLE;
     k->vm.idle_reset = 1; /* every command received restarts the power-down timer (spec p. 35) */
-    display_ir_activity(&k->vm); /* and lights the IR mark, as do the brick's own transmissions */
     /* Messages are never repeats (reference-firmware.md): every brick and host sends each one as F7. */
     if (op != k->ir.last_op || (u8)(op | RCX_TOGGLE) == (RCX_OP_MESSAGE | RCX_TOGGLE)) {
         u8 at = k->ir.rx_len > IR_CHUNK ? k->ir.rx_len : IR_CHUNK;
@@ -203,11 +202,14 @@ void ir_poll(struct rcx_brick *k)
             k->ir.tx_pack = k->vm.remote.tx_pack;
             k->ir.tx_mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
-            display_ir_activity(&k->vm);
+        } else {
+            goto send;
         }
+        display_ir_activity(&k->vm); /* lit by every command received, as by the brick's own transmissions */
         if (len)
             tx_start(k, len);
     }
+send:
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
     if (k->ir.tx_pos >= k->ir.tx_total || hal_ir_busy(&k->vm))
         return;
