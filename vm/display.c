@@ -34,22 +34,18 @@ static const u8 point_segs[6] = { BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY
 
 /*
  * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
- * their entries light the figure's body, which is lit anyway), then input 1-3 pressed, then
- * output A-C by the mode on the wire: float (nothing new), reverse arrows, forward arrows, brake (nothing new).
+ * their entries light the figure's body, which is lit anyway), then input 1-3 pressed, then the arrows of output A-C
+ * driven in reverse, and forward.
  */
 static const u8 marks[] = {
     BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
-    BODY, BODY, BODY,
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
-    BODY, BODY, BODY,
 };
 #define VIEW_SELECTED 0 /* + view */
 #define INPUT_PRESSED 8
-#define OUTPUT_MODE 11 /* + 3 * enum hal_motor_mode + output */
-RCX_STATIC_ASSERT(output_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
-                                HAL_MOTOR_BRAKE == 3);
+#define OUTPUT_REV 11   /* + output; + 3: forward */
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -79,9 +75,11 @@ static void digit(u8 pos, u8 glyph)
 {
     const u8 *segs = digit_segs + pos * 7;
     u8 shape = font[glyph];
-    for (; shape; shape >>= 1, segs++)
+
+    do /* (every glyph lights something) */
         if (shape & 1)
             lit(*segs);
+    while (segs++, shape >>= 1);
 }
 
 /*
@@ -178,8 +176,9 @@ static void compose(struct rcx *b)
         if (b->sensor[i].boolean)
             mark(INPUT_PRESSED + i);
     for (i = 0; i < RCX_MOTORS; i++) {
-        mode = outputs_mode(b, i);
-        mark((u8)(OUTPUT_MODE + mode * 3 + i));
+        mode = outputs_applied(b, i);
+        if (mode & RCX_MOTOR_ON) /* driven: an arrow */
+            mark((u8)(OUTPUT_REV + (mode & RCX_MOTOR_FWD ? 3 : 0) + i));
     }
     mark(VIEW_SELECTED + b->display.view);
 }

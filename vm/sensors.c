@@ -166,14 +166,17 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
  * two phases cannot tell the direction and counts nothing. */
 static const s8 step_of[4] = { 0, 1, 0, -1 };
 
-static s8 rotation_step(struct rcx_sensor *s, u16 raw)
+/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
+ * mode the steps are counted into the value. */
+static void turn(struct rcx_sensor *s, u16 raw)
 {
     u8 phase = rotation_phase(raw), was = s->phase;
 
     if (phase == PHASE_NONE)
-        return 0;
+        return;
     s->phase = phase;
-    return was == PHASE_NONE ? 0 : step_of[(phase - was) & 3];
+    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE)
+        s->value = (s16)(s->value + step_of[(u8)(phase - was) & 3]);
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
@@ -181,10 +184,9 @@ RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by h
 /* A sample that may change something (| SENSOR_STEADY, as sensor_sample() had it). Conversions cost divisions, which
  * the brick does in software, but a sample comes here only when raw changed or has not been the same for
  * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
-static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
+static __attribute__((noinline)) void sample(struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
-    s8 step;
     s16 v;
     u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
@@ -194,7 +196,7 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     s->quiet = raw | SENSOR_STEADY;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
-    step = rotation_step(s, raw);
+    turn(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
     v = s->value;
@@ -207,14 +209,10 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
         v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
     else if (mode == SENSOR_MODE_PERIODS)
         v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
-    else if (mode == SENSOR_MODE_ANGLE)
-        v = (s16)(v + step);
-    else
+    else if (mode != SENSOR_MODE_ANGLE) /* (counted by turn()) */
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;
-    if (s->watched)
-        events_input(b, s->number);
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
@@ -229,8 +227,8 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
         return;
     s = &b->sensor[n];
     if (raw != s->quiet)
-        sample(b, s, raw);
-    else if (s->watched)
+        sample(s, raw);
+    if (s->watched)
         events_input(b, s->number);
 }
 
