@@ -82,12 +82,16 @@ void outputs_changed(struct rcx *b)
         apply(b, i);
 }
 
+/* A pause that ends lets its motor be driven as its registers say; the others stay as they are (apply() changes
+ * nothing where nothing changed). */
 void outputs_tick(struct rcx *b)
 {
-    u8 i;
-    for (i = 0; i < RCX_MOTORS; i++)
-        if (b->out.pause[i] && !--b->out.pause[i])
-            apply(b, i);
+    u8 i, *pause = b->out.pause;
+
+    for (i = 0; i < RCX_MOTORS; i++, pause++)
+        if (*pause)
+            --*pause;
+    outputs_changed(b);
 }
 
 /* firm0328 always sets bits 4-5 here (reference-firmware.md); bit 6 is not part of this layout. */
