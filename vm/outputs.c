@@ -102,10 +102,12 @@ u8 outputs_global_status(const struct rcx *b, u8 i)
 
 void outputs_update(struct rcx *b, u8 list, u16 change)
 {
-    u8 *reg = (list & OUTPUTS_GLOBAL) ? b->out.global : b->out.motor, n = RCX_MOTORS;
+    u8 *reg = b->out.motor;
 
+    if (list & OUTPUTS_GLOBAL)
+        reg = b->out.global;
     /* The bytes of `change` used where they are: copied into variables of their own, one spills to the stack. */
-    for (; n; n--, reg++, list >>= 1)
+    for (list &= ALL_MOTORS; list; list >>= 1, reg++)
         if (list & 1)
             *reg = (u8)((*reg & ~(change >> 8)) ^ change);
     outputs_changed(b);
