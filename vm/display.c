@@ -124,8 +124,8 @@ u8 program_running(const struct rcx *b)
 }
 
 /*
- * The digits (program number and the view's number) are worked out again only when what they show changed: they
- * cost far more than the rest, which is composed at every refresh.
+ * The view's number is worked out again only when it or its decimal places changed: its divisions and its four
+ * digits cost far more than the rest, which is composed at every refresh (the program number's one digit too).
  */
 static void compose(struct rcx *b)
 {
@@ -153,18 +153,16 @@ static void compose(struct rcx *b)
                                                     : source_get(b, NULL, b->display.user_source, b->display.user_index);
         places1 = (u8)(b->display.user_precision + 1);
     }
-    i = (u8)(b->prog + 1);
-    if (v != b->display.digits_v || places1 != b->display.digits_places1 || i != b->display.digits_prog1) {
+    if (v != b->display.digits_v || places1 != b->display.digits_places1) {
         b->display.digits_v = v;
         b->display.digits_places1 = places1;
-        b->display.digits_prog1 = i;
         memset(work, 0, DISPLAY_BYTES);
-        digit(0, i);
         number(v, b->display.digits_places1); /* read back: kept across the calls it would cost a spill */
         memcpy(b->display.digits, work, DISPLAY_BYTES);
     }
     for (i = 0; i < DISPLAY_BYTES; i++)
         work[i] = (u8)(b->display.marks[i] | b->display.digits[i]);
+    digit(0, (u8)(b->prog + 1));
     /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
     if ((u8)(b->display.phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
         work[0] |= FIGURE_WALKING;

@@ -59,10 +59,9 @@ struct rcx_display {
     u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
-    u8 digits[DISPLAY_BYTES]; /* the segments of the digits (vm/display.c), worked out from: */
-    s16 digits_v;        /* the number, */
-    u8 digits_places1;   /* its decimal places + 1 (0 at power-on: nothing worked out yet) */
-    u8 digits_prog1;     /* and the program number shown */
+    u8 digits[DISPLAY_BYTES]; /* the segments of the view's number (vm/display.c), worked out from: */
+    s16 digits_v;        /* the number */
+    u8 digits_places1;   /* and its decimal places + 1 (0 at power-on: nothing worked out yet) */
 };
 
 void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */

@@ -96,15 +96,23 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     return s;
 }
 
+struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode)
+{
+    struct rcx_sensor *s = sensor_clear(b, n);
+
+    if (s)
+        s->mode = mode;
+    return s;
+}
+
 void sensor_set_type(struct rcx *b, u8 n, u8 type)
 {
     struct rcx_sensor *s;
     u16 raw;
 
-    if (type >= sizeof default_mode || !(s = sensor_clear(b, n)))
+    if (type >= sizeof default_mode || !(s = sensor_set_mode(b, n, default_mode[type])))
         return;
     s->type = type;
-    s->mode = default_mode[type];
     s->boolean = 0;
     /* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
     raw = s->raw;
@@ -115,13 +123,6 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
 
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
-{
-    struct rcx_sensor *s = sensor_clear(b, n);
-
-    if (s)
-        s->mode = mode;
-}
 
 /* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
 static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
@@ -184,7 +185,7 @@ RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by h
 /* A sample that may change something (| SENSOR_STEADY, as sensor_sample() had it). Conversions cost divisions, which
  * the brick does in software, but a sample comes here only when raw changed or has not been the same for
  * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
-static __attribute__((noinline)) void sample(struct rcx_sensor *s, u16 raw)
+static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
     s16 v;
@@ -213,6 +214,8 @@ static __attribute__((noinline)) void sample(struct rcx_sensor *s, u16 raw)
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;
+    if (s->watched)
+        events_input(b, s->number);
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
@@ -227,8 +230,8 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
         return;
     s = &b->sensor[n];
     if (raw != s->quiet)
-        sample(s, raw);
-    if (s->watched)
+        sample(b, s, raw);
+    else if (s->watched)
         events_input(b, s->number);
 }
 

@@ -56,13 +56,12 @@ static void enqueue(struct rcx *b, u16 hz, u8 len)
 /* Duration 0 plays 10 ms, as firm0328 does (reference-firmware.md). */
 void sound_tone(struct rcx *b, u16 hz, u8 dur10)
 {
-    if (b->sound.muted)
-        return;
     if (!dur10)
         dur10 = 1;
     if (hz < SOUND_MIN_HZ || hz > SOUND_MAX_HZ)
         hz = 0;
-    enqueue(b, hz, dur10);
+    if (!b->sound.muted)
+        enqueue(b, hz, dur10);
 }
 
 void sound_ui(struct rcx *b, u8 sound)
