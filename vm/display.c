@@ -181,23 +181,6 @@ static void compose(struct rcx *b)
     mark(VIEW_SELECTED + b->display.view);
 }
 
-void display_view(struct rcx *b, u8 view)
-{
-    if (view <= DISPLAY_USER)
-        b->display.view = view;
-}
-
-/* nqc's SetUserDisplay sends only this command, so it selects the user view as well. */
-void display_user(struct rcx *b, u8 precision, u8 src, u16 index)
-{
-    if (precision > 3)
-        return;
-    b->display.user_precision = precision;
-    b->display.user_source = src;
-    b->display.user_index = index;
-    b->display.view = DISPLAY_USER;
-}
-
 void display_mark(struct rcx *b, u8 seg, u8 on)
 {
     u8 *m, mask;

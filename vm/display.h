@@ -64,8 +64,19 @@ struct rcx_display {
     u8 digits_places1;   /* and its decimal places + 1 (0 at power-on: nothing worked out yet) */
 };
 
-void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
-void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
+/* SelectDisplay, View button, SetWatch (a view above DISPLAY_USER changes nothing). A macro: shorter than a call. */
+#define display_view(b, v) do { u8 view_ = (v); if (view_ <= DISPLAY_USER) (b)->display.view = view_; } while (0)
+/* ViewSourceValue: the user view of a source (precision above 3 changes nothing); nqc's SetUserDisplay sends only
+ * this command, so it selects the user view as well. A macro, for its one caller: shorter than a call. */
+#define display_user(b, precision, src, index) do { \
+        u8 precision_ = (precision); \
+        if (precision_ <= 3) { \
+            (b)->display.user_precision = precision_; \
+            (b)->display.user_source = (src); \
+            (b)->display.user_index = (index); \
+            (b)->display.view = DISPLAY_USER; \
+        } \
+    } while (0)
 void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
 void display_tick(struct rcx *b);                                   /* every 20 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
