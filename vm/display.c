@@ -181,19 +181,6 @@ static void compose(struct rcx *b)
     mark(VIEW_SELECTED + b->display.view);
 }
 
-void display_mark(struct rcx *b, u8 seg, u8 on)
-{
-    u8 *m, mask;
-
-    if (seg < DISPLAY_BYTES * 8) {
-        m = &b->display.marks[seg >> 3];
-        mask = bit[seg & 7];
-        *m |= mask;
-        if (!on)
-            *m ^= mask;
-    }
-}
-
 RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 
 /* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */

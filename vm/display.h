@@ -77,7 +77,17 @@ struct rcx_display {
             (b)->display.view = DISPLAY_USER; \
         } \
     } while (0)
-void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
+/* A DISPLAY_MARK_* (any segment; others change nothing) on or off. A macro: with the constant segment of a mark it
+ * is a bit set or cleared. */
+#define display_mark(b, seg, on) do { \
+        u8 seg_ = (seg), mask_ = (u8)(1u << (seg_ & 7)); \
+        if (seg_ < DISPLAY_BYTES * 8) { \
+            if (on) \
+                (b)->display.marks[seg_ >> 3] |= mask_; \
+            else \
+                (b)->display.marks[seg_ >> 3] &= (u8)~mask_; \
+        } \
+    } while (0)
 void display_tick(struct rcx *b);                                   /* every 20 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
  * talking. A field store, not a call: it is made in the IR layer's busiest paths. */
