@@ -53,13 +53,12 @@ static void apply(struct rcx *b, u8 i)
 
     if (!(g & RCX_MOTOR_ON))
         want = g;
-    if (!(want & RCX_MOTOR_ON))
+    if (!(want & RCX_MOTOR_ON)) { /* stopped (braked or floating): a pause ends at once */
         want &= RCX_MOTOR_BRAKE;
-    if (*pause) {
-        if (want & RCX_MOTOR_ON)
-            return;
         *pause = 0;
-    } else if (want & *now & RCX_MOTOR_ON && (want ^ *now) & RCX_MOTOR_FWD) { /* driven one way, now the other */
+    } else if (*pause) {
+        return;
+    } else if (*now & RCX_MOTOR_ON && (want ^ *now) & RCX_MOTOR_FWD) { /* driven one way, now the other */
         *pause = OUTPUTS_REVERSE_PAUSE_MS;
         want = RCX_MOTOR_BRAKE;
     }
