@@ -163,21 +163,19 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* Steps the rotation sensor turned since the last valid sample: +1, -1 or 0, by the change of phase (mod 4). A jump of
- * two phases cannot tell the direction and counts nothing. */
-static const s8 step_of[4] = { 0, 1, 0, -1 };
-
 /* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
  * mode the steps are counted into the value. */
 static void turn(struct rcx_sensor *s, u16 raw)
 {
-    u8 phase = rotation_phase(raw), was = s->phase;
+    u8 phase = rotation_phase(raw), was = s->phase, d = (u8)((phase - was) & 3);
 
     if (phase == PHASE_NONE)
         return;
     s->phase = phase;
-    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE)
-        s->value = (s16)(s->value + step_of[(u8)(phase - was) & 3]);
+    /* The change of phase (mod 4) since the last valid sample: 1 a step up, 3 a step down; a jump of two phases cannot
+     * tell the direction and counts nothing. */
+    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE && d & 1)
+        s->value = (s16)(s->value + 2 - d);
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
