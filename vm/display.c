@@ -27,25 +27,25 @@ static const u8 digit_segs[5 * 7 + 1] = {
 static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
 #define MINUS 10
 
-/* Decimal point for 0-3 decimal places: none (the figure's body, lit anyway), right of digit 2, 3, 4; then the
- * watch's four digits with the point lit, and dark. */
-static const u8 point_segs[6] = { BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY };
-#define WATCH_POINT 4 /* + 1: dark */
-
 /*
- * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
- * their entries light the figure's body, which is lit anyway), then input 1-3 pressed, then the arrows of output A-C
- * driven in reverse, and forward.
+ * Single segments (mark()): the mark of each view (input 1-3 selected, output A-C selected; the watch and the user
+ * view have none: their entries light the figure's body, which is lit anyway); the decimal point for 0-3 decimal
+ * places (none: the body again, shared with the user view), right of digit 2, 3, 4, then for the watch's four digits
+ * the point lit, and dark; input 1-3 pressed; the arrows of output A-C driven in reverse, and forward.
  */
 static const u8 marks[] = {
-    BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6), BODY,
+    BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6),
+    BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
 };
 #define VIEW_SELECTED 0 /* + view */
-#define INPUT_PRESSED 8
-#define OUTPUT_REV 11   /* + output; + 3: forward */
+#define POINT 6         /* + places1 (decimal places + 1) */
+#define WATCH_POINT 4   /* places1 - 1 of the watch; + 1: dark */
+#define INPUT_PRESSED 13
+#define OUTPUT_REV 16   /* + output; + 3: forward */
+RCX_STATIC_ASSERT(user_view_is_last, DISPLAY_USER == POINT + 1);
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -83,7 +83,7 @@ static void digit(u8 pos, u8 glyph)
 }
 
 /*
- * A signed number in positions 1-4 with the point of point_segs[places1 - 1]: leading zeros dropped except those the
+ * A signed number in positions 1-4 with the point marks[POINT + places1]: leading zeros dropped except those the
  * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
  * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
@@ -97,7 +97,7 @@ static __attribute__((noinline)) void number(s16 v, u8 places1)
             digit(pos, MINUS);
         return;
     }
-    lit(point_segs[places1 - 1]);
+    mark((u8)(POINT + places1));
     if (places1 > 4) /* digits shown at least */
         places1 = 4;
     do {
