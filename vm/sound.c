@@ -93,13 +93,6 @@ void sound_clear(struct rcx *b)
     play(b, 0);
 }
 
-void sound_mute(struct rcx *b, u8 on)
-{
-    b->sound.muted = on;
-    if (on)
-        sound_clear(b);
-}
-
 /*
  * An entry is a tone while its `len` is not 0; a system sound's entry has `hz` at its next note in system_notes[],
  * and a tone's entry becomes one with no notes left once its note has started.
