@@ -137,7 +137,8 @@ static void compose(struct rcx *b)
     /* `places1` (decimal places + 1) is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
-        places1 = (u8)(WATCH_POINT + 1 + (b->display.phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
+        /* The point blinks: lit in the first three frames (phase / 3 frames is 0), dark in the others (1). */
+        places1 = (u8)(WATCH_POINT + 1 + b->display.phase / (3 * DISPLAY_FRAME_STEPS));
     } else if (view <= DISPLAY_INPUT_3) {
         s = &b->sensor[view - DISPLAY_INPUT_1];
         v = s->value;
@@ -186,8 +187,7 @@ RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 /* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */
 void display_tick(struct rcx *b)
 {
-    if (++b->display.phase >= 6 * DISPLAY_FRAME_STEPS)
-        b->display.phase = 0;
+    b->display.phase = (u8)((u8)(b->display.phase + 1) % (6 * DISPLAY_FRAME_STEPS));
     if (b->display.ir)
         b->display.ir--;
     compose(b);
