@@ -11,41 +11,41 @@
 #define BODY S(0, 1) /* the figure's body, always lit: where a table entry must light nothing new */
 
 /*
- * Segments g, a, b, c, d, e, f (g first: position 5 has nothing else) of digit positions 0 (program number) and 1-4
- * (1 rightmost), rcx-hardware.md §3.6, then position 5: only the minus sign left of a four-digit number.
+ * The segments drawn, by lit(): first g, a, b, c, d, e, f (g first: position 5 has nothing else) of digit positions
+ * 0 (program number) and 1-4 (1 rightmost), rcx-hardware.md §3.6, then position 5: only the minus sign left of a
+ * four-digit number. Then single ones: the mark of each view (input 1-3 selected, output A-C selected; the watch and
+ * the user view have none: their entries light the figure's body, which is lit anyway); the decimal point for 0-3
+ * decimal places (none: the body again, shared with the user view), right of digit 2, 3, 4, then for the watch's four
+ * digits the point lit, and dark; input 1-3 pressed; the arrows of output A-C driven in reverse, and forward; the IR
+ * mark.
  */
-static const u8 digit_segs[5 * 7 + 1] = {
+static const u8 segs[] = {
     S(1, 5), S(1, 4), S(2, 5), S(2, 7), S(1, 7), S(4, 7), S(4, 5),
     S(0, 5), S(0, 4), S(4, 1), S(4, 3), S(0, 7), S(5, 7), S(5, 5),
     S(1, 1), S(1, 0), S(5, 1), S(5, 3), S(1, 3), S(6, 7), S(6, 5),
     S(3, 1), S(3, 0), S(8, 1), S(8, 3), S(3, 3), S(8, 7), S(8, 5),
     S(3, 5), S(3, 4), S(7, 1), S(7, 3), S(3, 7), S(7, 7), S(7, 5),
     S(7, 6),
-};
-
-/* Seven-segment shapes of 0-9 and the minus, bit 0 = g, bit 1 = a ... bit 6 = f. */
-static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
-#define MINUS 10
-
-/*
- * Single segments (mark()): the mark of each view (input 1-3 selected, output A-C selected; the watch and the user
- * view have none: their entries light the figure's body, which is lit anyway); the decimal point for 0-3 decimal
- * places (none: the body again, shared with the user view), right of digit 2, 3, 4, then for the watch's four digits
- * the point lit, and dark; input 1-3 pressed; the arrows of output A-C driven in reverse, and forward.
- */
-static const u8 marks[] = {
     BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6),
     BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
+    DISPLAY_MARK_IR_LOW,
 };
-#define VIEW_SELECTED 0 /* + view */
-#define POINT 6         /* + places1 (decimal places + 1) */
+#define DIGIT 7         /* * position */
+#define VIEW_SELECTED 36 /* + view */
+#define POINT 42        /* + places1 (decimal places + 1) */
 #define WATCH_POINT 4   /* places1 - 1 of the watch; + 1: dark */
-#define INPUT_PRESSED 13
-#define OUTPUT_REV 16   /* + output; + 3: forward */
-RCX_STATIC_ASSERT(user_view_is_last, DISPLAY_USER == POINT + 1);
+#define INPUT_PRESSED 49
+#define OUTPUT_REV 52   /* + output; + 3: forward */
+#define IR 58
+RCX_STATIC_ASSERT(segs_as_counted, sizeof segs == IR + 1 && VIEW_SELECTED == 5 * DIGIT + 1 &&
+                                   VIEW_SELECTED + DISPLAY_USER == POINT + 1);
+
+/* Seven-segment shapes of 0-9 and the minus, bit 0 = g, bit 1 = a ... bit 6 = f. */
+static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
+#define MINUS 10
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -61,29 +61,25 @@ static u8 work[DISPLAY_BYTES] RCX_SCRATCH;
 /* Bit n of a byte. */
 static const u8 bit[8] = { 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80 };
 
-static void lit(u8 seg)
+static void lit(u8 k)
 {
-    work[seg >> 3] |= bit[seg & 7];
-}
+    u8 seg = segs[k];
 
-static void mark(u8 k)
-{
-    lit(marks[k]);
+    work[seg >> 3] |= bit[seg & 7];
 }
 
 static void digit(u8 pos, u8 glyph)
 {
-    const u8 *segs = digit_segs + pos * 7;
-    u8 shape = font[glyph];
+    u8 k = (u8)(pos * DIGIT), shape = font[glyph];
 
     do /* (every glyph lights something) */
         if (shape & 1)
-            lit(*segs);
-    while (segs++, shape >>= 1);
+            lit(k);
+    while (k++, shape >>= 1);
 }
 
 /*
- * A signed number in positions 1-4 with the point marks[POINT + places1]: leading zeros dropped except those the
+ * A signed number in positions 1-4 with the point segs[POINT + places1]: leading zeros dropped except those the
  * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
  * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
@@ -97,7 +93,7 @@ static __attribute__((noinline)) void number(s16 v, u8 places1)
             digit(pos, MINUS);
         return;
     }
-    mark((u8)(POINT + places1));
+    lit((u8)(POINT + places1));
     if (places1 > 4) /* digits shown at least */
         places1 = 4;
     do {
@@ -170,16 +166,16 @@ static void compose(struct rcx *b)
     else
         work[0] |= FIGURE_STANDING;
     if (b->display.ir)
-        lit(DISPLAY_MARK_IR_LOW);
+        lit(IR);
     for (i = 0; i < RCX_SENSORS; i++)
         if (b->sensor[i].boolean)
-            mark(INPUT_PRESSED + i);
+            lit(INPUT_PRESSED + i);
     for (i = 0; i < RCX_MOTORS; i++) {
         mode = outputs_applied(b, i);
         if (mode & RCX_MOTOR_ON) /* driven: an arrow */
-            mark((u8)(OUTPUT_REV + (mode & RCX_MOTOR_FWD ? 3 : 0) + i));
+            lit((u8)(OUTPUT_REV + (mode & RCX_MOTOR_FWD ? 3 : 0) + i));
     }
-    mark(VIEW_SELECTED + b->display.view);
+    lit((u8)(VIEW_SELECTED + b->display.view));
 }
 
 RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);

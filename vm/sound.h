@@ -22,11 +22,11 @@ struct sound_entry {
 };
 
 struct rcx_sound {
-    u16 left;      /* milliseconds left of the current note; 0 = none started (first: the most used field) */
+    struct sound_entry queue[SOUND_QUEUE]; /* (first: at the address of the whole, the most used field) */
+    u16 left;      /* milliseconds left of the current note; 0 = none started */
     u16 sounding;  /* the frequency hal_sound() was last given */
     u8 muted;      /* MuteSound: program sounds ignored, system sounds of the user interface still play */
     u8 count;      /* entries queued from queue[0], the playing one included */
-    struct sound_entry queue[SOUND_QUEUE];
 };
 
 void sound_tone(struct rcx *b, u16 hz, u8 dur10);   /* PlayTone/PlayToneVar from a program or host */
