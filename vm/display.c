@@ -167,13 +167,13 @@ static void compose(struct rcx *b)
         work[0] |= FIGURE_STANDING;
     if (b->display.ir)
         lit(IR);
-    for (i = 0; i < RCX_SENSORS; i++)
-        if (b->sensor[i].boolean)
-            lit(INPUT_PRESSED + i);
-    for (i = 0; i < RCX_MOTORS; i++) {
-        mode = outputs_applied(b, i);
+    for (i = INPUT_PRESSED; i < INPUT_PRESSED + RCX_SENSORS; i++)
+        if (b->sensor[i - INPUT_PRESSED].boolean)
+            lit(i);
+    for (i = OUTPUT_REV; i < OUTPUT_REV + RCX_MOTORS; i++) {
+        mode = outputs_applied(b, i - OUTPUT_REV);
         if (mode & RCX_MOTOR_ON) /* driven: an arrow */
-            lit((u8)(OUTPUT_REV + (mode & RCX_MOTOR_FWD ? 3 : 0) + i));
+            lit((u8)(mode & RCX_MOTOR_FWD ? i + 3 : i));
     }
     lit((u8)(VIEW_SELECTED + b->display.view));
 }
