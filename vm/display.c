@@ -43,9 +43,9 @@ static const u8 segs[] = {
 RCX_STATIC_ASSERT(segs_as_counted, sizeof segs == IR + 1 && VIEW_SELECTED == 5 * DIGIT + 1 &&
                                    VIEW_SELECTED + DISPLAY_USER == POINT + 1);
 
-/* Seven-segment shapes of 0-9 and the minus, bit 0 = g, bit 1 = a ... bit 6 = f. */
-static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
-#define MINUS 10
+/* Seven-segment shapes of 0-9, bit 0 = g, bit 1 = a ... bit 6 = f (a minus sign is g alone: lit() of a position's
+ * first segment). */
+static const u8 font[10] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F };
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -68,9 +68,10 @@ static void lit(u8 k)
     work[seg >> 3] |= bit[seg & 7];
 }
 
-static void digit(u8 pos, u8 glyph)
+/* A glyph at the digit position whose segments start at segs[k] (k = position * DIGIT). */
+static void digit(u8 k, u8 glyph)
 {
-    u8 k = (u8)(pos * DIGIT), shape = font[glyph];
+    u8 shape = font[glyph];
 
     do /* (every glyph lights something) */
         if (shape & 1)
@@ -80,30 +81,32 @@ static void digit(u8 pos, u8 glyph)
 
 /*
  * A signed number in positions 1-4 with the point segs[POINT + places1]: leading zeros dropped except those the
- * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
- * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
+ * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign (the middle segment, first of a position's)
+ * left of the first digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
 static __attribute__((noinline)) void number(s16 v, u8 places1)
 {
     u16 u = v < 0 ? (u16)(0u - (u16)v) : (u16)v, q;
-    u8 pos = 1, d;
+    u8 k = DIGIT, d;
 
     if (u > DISPLAY_MAX) {
-        for (; pos <= 4; pos++)
-            digit(pos, MINUS);
+        for (; k <= 4 * DIGIT; k += DIGIT)
+            lit(k);
         return;
     }
     lit((u8)(POINT + places1));
     if (places1 > 4) /* digits shown at least */
         places1 = 4;
+    places1 *= DIGIT;
     do {
         q = u / 10;
         d = (u8)((u8)u - (u8)q * 10u); /* u % 10 without a second division */
         u = q;
-        digit(pos++, d);
-    } while (u || pos <= places1);
+        digit(k, d);
+        k += DIGIT;
+    } while (u || k <= places1);
     if (v < 0)
-        digit(pos, MINUS);
+        lit(k);
 }
 
 RCX_STATIC_ASSERT(idle_is_0, RCX_TASK_IDLE == 0);
