@@ -88,8 +88,8 @@ static void play(struct rcx *b, u16 hz)
 
 void sound_clear(struct rcx *b)
 {
-    b->sound.count = 0;
     b->sound.left = 0;
+    b->sound.count = 0;
     play(b, 0);
 }
 
@@ -123,5 +123,5 @@ void sound_tick(struct rcx *b)
             return;
         }
     }
-    play(b, 0);
+    sound_clear(b); /* the queue ran out (left and count are 0 already): silence */
 }
