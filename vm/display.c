@@ -186,12 +186,20 @@ RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 /* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */
 void display_tick(struct rcx *b)
 {
+    u8 *p, *w, diff;
+
     b->display.phase = (u8)((u8)(b->display.phase + 1) % (6 * DISPLAY_FRAME_STEPS));
     if (b->display.ir)
         b->display.ir--;
     compose(b);
-    if (memcmp(work, b->display.shown, DISPLAY_BYTES)) {
-        memcpy(b->display.shown, work, DISPLAY_BYTES);
+    /* Copied into shown[], told only when some byte differed. */
+    p = b->display.shown;
+    w = work;
+    diff = 0;
+    do {
+        diff |= (u8)(*p ^ *w);
+        *p++ = *w++;
+    } while (w != work + DISPLAY_BYTES);
+    if (diff)
         hal_lcd(b, b->display.shown);
-    }
 }

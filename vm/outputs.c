@@ -85,18 +85,13 @@ void outputs_changed(struct rcx *b)
  * nothing where nothing changed). */
 void outputs_tick(struct rcx *b)
 {
-    u8 i, *pause = b->out.pause;
+    u8 n = RCX_MOTORS, *pause = b->out.pause;
 
-    for (i = 0; i < RCX_MOTORS; i++, pause++)
+    do
         if (*pause)
             --*pause;
+    while (pause++, --n);
     outputs_changed(b);
-}
-
-/* firm0328 always sets bits 4-5 here (reference-firmware.md); bit 6 is not part of this layout. */
-u8 outputs_global_status(const struct rcx *b, u8 i)
-{
-    return (u8)((b->out.global[i] & 0x8F) | 0x30);
 }
 
 void outputs_update(struct rcx *b, u8 list, u16 change)

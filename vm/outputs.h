@@ -30,7 +30,9 @@ void outputs_init(struct rcx *b);          /* power-on and switching off: connec
 void outputs_changed(struct rcx *b);       /* registers were written: recompute and apply */
 void outputs_tick(struct rcx *b);          /* every 1 ms */
 u8 outputs_status(const struct rcx *b, u8 motor);  /* source 3 */
-u8 outputs_global_status(const struct rcx *b, u8 motor); /* source 17 */
+/* Source 17: firm0328 always sets bits 4-5 (reference-firmware.md); bit 6 is not part of this layout. A macro: shorter
+ * than a call. */
+#define outputs_global_status(b, motor) ((u8)(((b)->out.global[motor] & 0x8F) | 0x30))
 
 /* Registers of the motors in `list` (bit 0 A, 1 B, 2 C; with OUTPUTS_GLOBAL the global ones): the bits of
  * OUTPUTS_CHANGE's `clear` cleared, then those of its `flip` flipped; then the result is applied. */
