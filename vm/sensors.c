@@ -135,7 +135,7 @@ static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
         return SENSOR_TEMP_INVALID;
     v = celsius(raw);
     if (mode == SENSOR_MODE_FAHRENHEIT)
-        v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
+        v = (s16)(v + v * 4 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result (v * 4 / 5 has v's sign) */
     return v;
 }
 
