@@ -14,9 +14,11 @@ static const u16 sound_tones[] = { 1389, 1295, 1196, 1096, 996, 893, 796, 694, 5
 #define TONE_BUZZ 11
 #define REST 12
 
-/* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. */
+/* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. A note is its tone and length
+ * code in one byte, the code in the low three bits (fewer shifts to take the tone than a nibble). */
 static const u8 note_lengths[] = { 0, 2, 4, 16, 6, 7, 100 };
-#define NOTE(tone, code) ((u8)((code) << 4 | (tone)))
+#define NOTE(tone, code) ((u8)((tone) << 3 | (code)))
+RCX_STATIC_ASSERT(notes_fit, sizeof note_lengths <= 8 && sizeof sound_tones / sizeof sound_tones[0] <= 32);
 #define SWEEP(code, a, b, c, d, e, f, g, h, i, j) NOTE(a, code), NOTE(b, code), NOTE(c, code), NOTE(d, code), \
     NOTE(e, code), NOTE(f, code), NOTE(g, code), NOTE(h, code), NOTE(i, code), NOTE(j, code)
 
@@ -113,8 +115,8 @@ void sound_tick(struct rcx *b)
             s->queue[0].len = 0;
         } else {
             code = system_notes[hz];
-            hz = sound_tones[code & 15];
-            len = note_lengths[code >> 4];
+            hz = sound_tones[code >> 3];
+            len = note_lengths[code & 7];
             s->queue[0].hz++;
         }
         if (len) {
