@@ -168,7 +168,7 @@ static void compose(struct rcx *b)
         work[0] |= FIGURE_WALKING;
     else
         work[0] |= FIGURE_STANDING;
-    if (b->display.ir)
+    if (b->display.ir && --b->display.ir) /* counted down here, once a refresh */
         lit(IR);
     for (i = INPUT_PRESSED; i < INPUT_PRESSED + RCX_SENSORS; i++)
         if (b->sensor[i - INPUT_PRESSED].boolean)
@@ -189,8 +189,6 @@ void display_tick(struct rcx *b)
     u8 *p, *w, diff;
 
     b->display.phase = (u8)((u8)(b->display.phase + 1) % (6 * DISPLAY_FRAME_STEPS));
-    if (b->display.ir)
-        b->display.ir--;
     compose(b);
     /* Copied into shown[], told only when some byte differed. */
     p = b->display.shown;
