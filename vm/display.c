@@ -129,7 +129,7 @@ u8 program_running(const struct rcx *b)
 static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
-    u8 i, mode, view, places1;
+    u8 i, wire, view, places1;
     s16 v;
 
     view = b->display.view;
@@ -174,9 +174,9 @@ static void compose(struct rcx *b)
         if (b->sensor[i - INPUT_PRESSED].boolean)
             lit(i);
     for (i = OUTPUT_REV; i < OUTPUT_REV + RCX_MOTORS; i++) {
-        mode = outputs_applied(b, i - OUTPUT_REV);
-        if (mode & RCX_MOTOR_ON) /* driven: an arrow */
-            lit((u8)(mode & RCX_MOTOR_FWD ? i + 3 : i));
+        wire = outputs_applied(b, i - OUTPUT_REV);
+        if (wire & RCX_MOTOR_ON) /* driven: an arrow */
+            lit((u8)(wire & RCX_MOTOR_FWD ? i + 3 : i));
     }
     lit((u8)(VIEW_SELECTED + b->display.view));
 }

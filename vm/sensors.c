@@ -123,7 +123,6 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
 
-
 /* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
 static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
 {
