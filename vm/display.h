@@ -53,6 +53,7 @@ struct rcx_display {
     u8 view;             /* enum display_view */
     u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
     u8 user_source;
+    u8 digits_places1;   /* decimal places + 1 of the number digits[] shows (0 at power-on: nothing worked out yet) */
     u16 user_index;
     u8 phase;            /* refreshes into a cycle of six frames: the figure walks in the odd ones, the watch's
                             point is lit in the first three */
@@ -60,8 +61,7 @@ struct rcx_display {
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
     u8 digits[DISPLAY_BYTES]; /* the segments of the view's number (vm/display.c), worked out from: */
-    s16 digits_v;        /* the number */
-    u8 digits_places1;   /* and its decimal places + 1 (0 at power-on: nothing worked out yet) */
+    s16 digits_v;        /* the number (and digits_places1 above) */
 };
 
 /* SelectDisplay, View button, SetWatch (a view above DISPLAY_USER changes nothing). A macro: shorter than a call. */
