@@ -67,9 +67,9 @@ void ui_battery(struct rcx_brick *k)
     u8 low = k->ui.battery_low;
 
     if (low ? b->battery_mv > UI_BATTERY_OK_MV : b->battery_mv < UI_BATTERY_LOW_MV) {
-        low ^= 1;
-        k->ui.battery_low = low;
-        display_mark(b, DISPLAY_MARK_BATTERY, low);
+        k->ui.battery_low = (u8)(low ^ 1);
+        /* The mark flips with it: nothing else switches it (display_mark() would, at a cost in .high). */
+        b->display.marks[DISPLAY_MARK_BATTERY >> 3] ^= (u8)(1u << (DISPLAY_MARK_BATTERY & 7));
     }
 }
 

@@ -11,45 +11,41 @@
 #define BODY S(0, 1) /* the figure's body, always lit: where a table entry must light nothing new */
 
 /*
- * Segments g, a, b, c, d, e, f (g first: position 5 has nothing else) of digit positions 0 (program number) and 1-4
- * (1 rightmost), rcx-hardware.md §3.6, then position 5: only the minus sign left of a four-digit number.
+ * The segments drawn, by lit(): first g, a, b, c, d, e, f (g first: position 5 has nothing else) of digit positions
+ * 0 (program number) and 1-4 (1 rightmost), rcx-hardware.md §3.6, then position 5: only the minus sign left of a
+ * four-digit number. Then single ones: the mark of each view (input 1-3 selected, output A-C selected; the watch and
+ * the user view have none: their entries light the figure's body, which is lit anyway); the decimal point for 0-3
+ * decimal places (none: the body again, shared with the user view), right of digit 2, 3, 4, then for the watch's four
+ * digits the point lit, and dark; input 1-3 pressed; the arrows of output A-C driven in reverse, and forward; the IR
+ * mark.
  */
-static const u8 digit_segs[5 * 7 + 1] = {
+static const u8 segs[] = {
     S(1, 5), S(1, 4), S(2, 5), S(2, 7), S(1, 7), S(4, 7), S(4, 5),
     S(0, 5), S(0, 4), S(4, 1), S(4, 3), S(0, 7), S(5, 7), S(5, 5),
     S(1, 1), S(1, 0), S(5, 1), S(5, 3), S(1, 3), S(6, 7), S(6, 5),
     S(3, 1), S(3, 0), S(8, 1), S(8, 3), S(3, 3), S(8, 7), S(8, 5),
     S(3, 5), S(3, 4), S(7, 1), S(7, 3), S(3, 7), S(7, 7), S(7, 5),
     S(7, 6),
-};
-
-/* Seven-segment shapes of 0-9 and the minus, bit 0 = g, bit 1 = a ... bit 6 = f. */
-static const u8 font[11] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F, 0x01 };
-#define MINUS 10
-
-/* Decimal point for 0-3 decimal places: none (the figure's body, lit anyway), right of digit 2, 3, 4; then the
- * watch's four digits with the point lit, and dark. */
-static const u8 point_segs[6] = { BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY };
-#define WATCH_POINT 4 /* + 1: dark */
-
-/*
- * Indicators: the mark of each view (input 1-3 selected, output A-C selected; the watch and the user view have none,
- * their entries light the figure's body, which is lit anyway), then input 1-3 pressed, then
- * output A-C by the mode on the wire: float (nothing new), reverse arrows, forward arrows, brake (nothing new).
- */
-static const u8 marks[] = {
-    BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6), BODY,
+    BODY, S(6, 0), S(5, 4), S(4, 4), S(7, 2), S(0, 6), S(1, 6),
+    BODY, S(5, 6), S(6, 6), S(8, 6), S(6, 6), BODY,
     S(6, 1), S(5, 0), S(2, 4),
-    BODY, BODY, BODY,
     S(3, 6), S(1, 2), S(4, 6),
     S(3, 2), S(4, 2), S(2, 6),
-    BODY, BODY, BODY,
+    DISPLAY_MARK_IR_LOW,
 };
-#define VIEW_SELECTED 0 /* + view */
-#define INPUT_PRESSED 8
-#define OUTPUT_MODE 11 /* + 3 * enum hal_motor_mode + output */
-RCX_STATIC_ASSERT(output_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
-                                HAL_MOTOR_BRAKE == 3);
+#define DIGIT 7         /* * position */
+#define VIEW_SELECTED 36 /* + view */
+#define POINT 42        /* + places1 (decimal places + 1) */
+#define WATCH_POINT 4   /* places1 - 1 of the watch; + 1: dark */
+#define INPUT_PRESSED 49
+#define OUTPUT_REV 52   /* + output; + 3: forward */
+#define IR 58
+RCX_STATIC_ASSERT(segs_as_counted, sizeof segs == IR + 1 && VIEW_SELECTED == 5 * DIGIT + 1 &&
+                                   VIEW_SELECTED + DISPLAY_USER == POINT + 1);
+
+/* Seven-segment shapes of 0-9, bit 0 = g, bit 1 = a ... bit 6 = f (a minus sign is g alone: lit() of a position's
+ * first segment). */
+static const u8 font[10] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7F, 0x5F };
 
 /* The figure's segments are all in image byte 0: walking is arms (bit 0), body (1) and two legs (3); standing is body
  * and one leg (2). */
@@ -65,51 +61,52 @@ static u8 work[DISPLAY_BYTES] RCX_SCRATCH;
 /* Bit n of a byte. */
 static const u8 bit[8] = { 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80 };
 
-static void lit(u8 seg)
+static void lit(u8 k)
 {
+    u8 seg = segs[k];
+
     work[seg >> 3] |= bit[seg & 7];
 }
 
-static void mark(u8 k)
+/* A glyph at the digit position whose segments start at segs[k] (k = position * DIGIT). */
+static void digit(u8 k, u8 glyph)
 {
-    lit(marks[k]);
-}
-
-static void digit(u8 pos, u8 glyph)
-{
-    const u8 *segs = digit_segs + pos * 7;
     u8 shape = font[glyph];
-    for (; shape; shape >>= 1, segs++)
+
+    do /* (every glyph lights something) */
         if (shape & 1)
-            lit(*segs);
+            lit(k);
+    while (k++, shape >>= 1);
 }
 
 /*
- * A signed number in positions 1-4 with the point of point_segs[places1 - 1]: leading zeros dropped except those the
- * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign in the middle segment left of the first
- * digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
+ * A signed number in positions 1-4 with the point segs[POINT + places1]: leading zeros dropped except those the
+ * decimal point needs ("0.05") and the watch's ("00.00"), the minus sign (the middle segment, first of a position's)
+ * left of the first digit. Magnitudes above 9999 show as "----": a clamped 9999 would look like a real reading.
  */
 static __attribute__((noinline)) void number(s16 v, u8 places1)
 {
     u16 u = v < 0 ? (u16)(0u - (u16)v) : (u16)v, q;
-    u8 pos = 1, d;
+    u8 k = DIGIT, d;
 
     if (u > DISPLAY_MAX) {
-        for (; pos <= 4; pos++)
-            digit(pos, MINUS);
+        for (; k <= 4 * DIGIT; k += DIGIT)
+            lit(k);
         return;
     }
-    lit(point_segs[places1 - 1]);
+    lit((u8)(POINT + places1));
     if (places1 > 4) /* digits shown at least */
         places1 = 4;
+    places1 *= DIGIT;
     do {
         q = u / 10;
         d = (u8)((u8)u - (u8)q * 10u); /* u % 10 without a second division */
         u = q;
-        digit(pos++, d);
-    } while (u || pos <= places1);
+        digit(k, d);
+        k += DIGIT;
+    } while (u || k <= places1);
     if (v < 0)
-        digit(pos, MINUS);
+        lit(k);
 }
 
 RCX_STATIC_ASSERT(idle_is_0, RCX_TASK_IDLE == 0);
@@ -126,20 +123,21 @@ u8 program_running(const struct rcx *b)
 }
 
 /*
- * The digits (program number and the view's number) are worked out again only when what they show changed: they
- * cost far more than the rest, which is composed at every refresh.
+ * The view's number is worked out again only when it or its decimal places changed: its divisions and its four
+ * digits cost far more than the rest, which is composed at every refresh (the program number's one digit too).
  */
 static void compose(struct rcx *b)
 {
     const struct rcx_sensor *s;
-    u8 i, mode, view, places1;
+    u8 i, wire, view, places1;
     s16 v;
 
     view = b->display.view;
     /* `places1` (decimal places + 1) is set after any call, so that it need not be kept across one. */
     if (view == DISPLAY_WATCH) {
         v = (s16)(b->watch + (u8)(b->watch / 60) * 40u); /* hours * 100 + minutes: shown as hh.mm */
-        places1 = (u8)(WATCH_POINT + 1 + (b->display.phase >= 3 * DISPLAY_FRAME_STEPS)); /* the point blinks */
+        /* The point blinks: lit in the first three frames (phase / 3 frames is 0), dark in the others (1). */
+        places1 = (u8)(WATCH_POINT + 1 + b->display.phase / (3 * DISPLAY_FRAME_STEPS));
     } else if (view <= DISPLAY_INPUT_3) {
         s = &b->sensor[view - DISPLAY_INPUT_1];
         v = s->value;
@@ -155,63 +153,32 @@ static void compose(struct rcx *b)
                                                     : source_get(b, NULL, b->display.user_source, b->display.user_index);
         places1 = (u8)(b->display.user_precision + 1);
     }
-    i = (u8)(b->prog + 1);
-    if (v != b->display.digits_v || places1 != b->display.digits_places1 || i != b->display.digits_prog1) {
+    if (v != b->display.digits_v || places1 != b->display.digits_places1) {
         b->display.digits_v = v;
         b->display.digits_places1 = places1;
-        b->display.digits_prog1 = i;
         memset(work, 0, DISPLAY_BYTES);
-        digit(0, i);
         number(v, b->display.digits_places1); /* read back: kept across the calls it would cost a spill */
         memcpy(b->display.digits, work, DISPLAY_BYTES);
     }
     for (i = 0; i < DISPLAY_BYTES; i++)
         work[i] = (u8)(b->display.marks[i] | b->display.digits[i]);
+    digit(0, (u8)(b->prog + 1));
     /* The running figure walks (alternating with standing every frame) while any task runs or waits. */
     if ((u8)(b->display.phase / DISPLAY_FRAME_STEPS) & 1 && program_running(b))
         work[0] |= FIGURE_WALKING;
     else
         work[0] |= FIGURE_STANDING;
-    if (b->display.ir)
-        lit(DISPLAY_MARK_IR_LOW);
-    for (i = 0; i < RCX_SENSORS; i++)
-        if (b->sensor[i].boolean)
-            mark(INPUT_PRESSED + i);
-    for (i = 0; i < RCX_MOTORS; i++) {
-        mode = outputs_mode(b, i);
-        mark((u8)(OUTPUT_MODE + mode * 3 + i));
+    if (b->display.ir && --b->display.ir) /* counted down here, once a refresh */
+        lit(IR);
+    for (i = INPUT_PRESSED; i < INPUT_PRESSED + RCX_SENSORS; i++)
+        if (b->sensor[i - INPUT_PRESSED].boolean)
+            lit(i);
+    for (i = OUTPUT_REV; i < OUTPUT_REV + RCX_MOTORS; i++) {
+        wire = outputs_applied(b, i - OUTPUT_REV);
+        if (wire & RCX_MOTOR_ON) /* driven: an arrow */
+            lit((u8)(wire & RCX_MOTOR_FWD ? i + 3 : i));
     }
-    mark(VIEW_SELECTED + b->display.view);
-}
-
-void display_view(struct rcx *b, u8 view)
-{
-    if (view <= DISPLAY_USER)
-        b->display.view = view;
-}
-
-/* nqc's SetUserDisplay sends only this command, so it selects the user view as well. */
-void display_user(struct rcx *b, u8 precision, u8 src, u16 index)
-{
-    if (precision > 3)
-        return;
-    b->display.user_precision = precision;
-    b->display.user_source = src;
-    b->display.user_index = index;
-    b->display.view = DISPLAY_USER;
-}
-
-void display_mark(struct rcx *b, u8 seg, u8 on)
-{
-    u8 *m, mask;
-
-    if (seg < DISPLAY_BYTES * 8) {
-        m = &b->display.marks[seg >> 3];
-        mask = bit[seg & 7];
-        *m |= mask;
-        if (!on)
-            *m ^= mask;
-    }
+    lit((u8)(VIEW_SELECTED + b->display.view));
 }
 
 RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
@@ -219,13 +186,18 @@ RCX_STATIC_ASSERT(refresh_is_every_other_10ms_step, DISPLAY_REFRESH_MS == 20);
 /* At the end of every other 10 ms step of the machine's clock (vm_tick), the first after power-on among them. */
 void display_tick(struct rcx *b)
 {
-    if (++b->display.phase >= 6 * DISPLAY_FRAME_STEPS)
-        b->display.phase = 0;
-    if (b->display.ir)
-        b->display.ir--;
+    u8 *p, *w, diff;
+
+    b->display.phase = (u8)((u8)(b->display.phase + 1) % (6 * DISPLAY_FRAME_STEPS));
     compose(b);
-    if (memcmp(work, b->display.shown, DISPLAY_BYTES)) {
-        memcpy(b->display.shown, work, DISPLAY_BYTES);
+    /* Copied into shown[], told only when some byte differed. */
+    p = b->display.shown;
+    w = work;
+    diff = 0;
+    do {
+        diff |= (u8)(*p ^ *w);
+        *p++ = *w++;
+    } while (w != work + DISPLAY_BYTES);
+    if (diff)
         hal_lcd(b, b->display.shown);
-    }
 }

@@ -53,21 +53,41 @@ struct rcx_display {
     u8 view;             /* enum display_view */
     u8 user_precision;   /* ViewSourceValue: decimal places 0-3 */
     u8 user_source;
+    u8 digits_places1;   /* decimal places + 1 of the number digits[] shows (0 at power-on: nothing worked out yet) */
     u16 user_index;
     u8 phase;            /* refreshes into a cycle of six frames: the figure walks in the odd ones, the watch's
                             point is lit in the first three */
     u8 ir;               /* refreshes the IR mark stays lit; display_ir_activity() */
     u8 marks[DISPLAY_BYTES]; /* segments switched on by display_mark() */
     u8 shown[DISPLAY_BYTES]; /* the image hal_lcd() last received */
-    u8 digits[DISPLAY_BYTES]; /* the segments of the digits (vm/display.c), worked out from: */
-    s16 digits_v;        /* the number, */
-    u8 digits_places1;   /* its decimal places + 1 (0 at power-on: nothing worked out yet) */
-    u8 digits_prog1;     /* and the program number shown */
+    u8 digits[DISPLAY_BYTES]; /* the segments of the view's number (vm/display.c), worked out from: */
+    s16 digits_v;        /* the number (and digits_places1 above) */
 };
 
-void display_view(struct rcx *b, u8 view);                          /* SelectDisplay, View button, SetWatch */
-void display_user(struct rcx *b, u8 precision, u8 src, u16 index);  /* ViewSourceValue: user view of a source */
-void display_mark(struct rcx *b, u8 seg, u8 on);                    /* a DISPLAY_MARK_* (any segment) on or off */
+/* SelectDisplay, View button, SetWatch (a view above DISPLAY_USER changes nothing). A macro: shorter than a call. */
+#define display_view(b, v) do { u8 view_ = (v); if (view_ <= DISPLAY_USER) (b)->display.view = view_; } while (0)
+/* ViewSourceValue: the user view of a source (precision above 3 changes nothing); nqc's SetUserDisplay sends only
+ * this command, so it selects the user view as well. A macro, for its one caller: shorter than a call. */
+#define display_user(b, precision, src, index) do { \
+        u8 precision_ = (precision); \
+        if (precision_ <= 3) { \
+            (b)->display.user_precision = precision_; \
+            (b)->display.user_source = (src); \
+            (b)->display.user_index = (index); \
+            (b)->display.view = DISPLAY_USER; \
+        } \
+    } while (0)
+/* A DISPLAY_MARK_* (any segment; others change nothing) on or off. A macro: with the constant segment of a mark it
+ * is a bit set or cleared. */
+#define display_mark(b, seg, on) do { \
+        u8 seg_ = (seg), mask_ = (u8)(1u << (seg_ & 7)); \
+        if (seg_ < DISPLAY_BYTES * 8) { \
+            if (on) \
+                (b)->display.marks[seg_ >> 3] |= mask_; \
+            else \
+                (b)->display.marks[seg_ >> 3] &= (u8)~mask_; \
+        } \
+    } while (0)
 void display_tick(struct rcx *b);                                   /* every 20 ms (vm_tick) */
 /* The IR layer calls this for every packet received and every transmission it starts, so a user sees the brick
  * talking. A field store, not a call: it is made in the IR layer's busiest paths. */

@@ -8,13 +8,6 @@
 #include "rcx.h"
 #include "hal.h"
 
-#define APPLIED(mode, level) ((u8)((level) << 2 | (mode)))
-/* Driven forward or backward (not braked, not floating): of the modes 0-3 only REV (1) and FWD (2) have bit 1 set in
- * mode + 1 (a carry out of the mode bits leaves it clear). */
-#define DRIVEN(applied) ((u8)((applied) + 1) & 2)
-RCX_STATIC_ASSERT(driven_modes, HAL_MOTOR_FLOAT == 0 && HAL_MOTOR_REV == 1 && HAL_MOTOR_FWD == 2 &&
-                                HAL_MOTOR_BRAKE == 3);
-
 #define ALL_MOTORS 0x07
 #define SET(value) OUTPUTS_CHANGE(0xFF, value)
 #define STOP OUTPUTS_CHANGE(RCX_MOTOR_ON | RCX_MOTOR_BRAKE, RCX_MOTOR_BRAKE) /* off, braked, the rest kept */
@@ -46,40 +39,38 @@ u8 outputs_status(const struct rcx *b, u8 i)
 
 /*
  * What the hardware gets: the motor's status (source 3) drives it, except that a globally disconnected motor is held
- * in the global register's off (brake) or float state. Brake holds at full strength: a stopped motor should not give
- * way under load.
- */
-static u8 wanted(const struct rcx *b, u8 i)
-{
-    u8 st = outputs_status(b, i), g = b->out.global[i];
-
-    if (!(g & RCX_MOTOR_ON))
-        st = g;
-    if (st & RCX_MOTOR_ON)
-        return (u8)((u8)(st << 2 & 0x1C) + HAL_MOTOR_REV + (st >> 3 & 1)); /* power << 2; FWD (bit 3) is REV + 1 */
-    return (st & RCX_MOTOR_BRAKE) ? APPLIED(HAL_MOTOR_BRAKE, 7) : APPLIED(HAL_MOTOR_FLOAT, 0);
-}
-
-/*
+ * in the global register's off (brake) or float state. Kept (rcx_outputs.applied) as a status byte with nothing but
+ * RCX_MOTOR_BRAKE left when it is off, so that equal states are equal bytes (a register that is on has no brake bit:
+ * switching on drops it, vm/ops.c).
+ *
  * The six states of spec p. 99 are the on/off/float and direction bits of the register; the rule that goes with
  * them is the pause: going straight from driving one way to driving the other, the motor is braked for 60 ms first.
  * Requests during the pause take effect at its end, except that stopping (brake or float) ends it at once.
  */
 static void apply(struct rcx *b, u8 i)
 {
-    u8 want = wanted(b, i), now = b->out.applied[i], *pause = &b->out.pause[i];
+    u8 want = outputs_status(b, i), g = b->out.global[i], *now = &b->out.applied[i], *pause = &b->out.pause[i];
 
-    if (*pause) {
-        if (DRIVEN(want))
-            return;
+    if (!(g & RCX_MOTOR_ON))
+        want = g;
+    if (!(want & RCX_MOTOR_ON)) { /* stopped (braked or floating): a pause ends at once */
+        want &= RCX_MOTOR_BRAKE;
         *pause = 0;
-    } else if (!((u8)~(now ^ want) & 3) && DRIVEN(now)) { /* driven one way, now wanted the other */
+    } else if (*pause) {
+        return;
+    } else if (*now & RCX_MOTOR_ON && (want ^ *now) & RCX_MOTOR_FWD) { /* driven one way, now the other */
         *pause = OUTPUTS_REVERSE_PAUSE_MS;
-        want = APPLIED(HAL_MOTOR_BRAKE, 7);
+        want = RCX_MOTOR_BRAKE;
     }
-    if (want != now) {
-        b->out.applied[i] = want;
-        hal_motor(b, i, (u8)(want & 3), (u8)(want >> 2));
+    if (want != *now) {
+        *now = want;
+        /* Brake holds at full strength: a stopped motor should not give way under load. */
+        if (want & RCX_MOTOR_ON)
+            hal_motor(b, i, (u8)(HAL_MOTOR_REV + (want >> 3 & 1)), (u8)(want & RCX_MOTOR_POWER));
+        else if (want)
+            hal_motor(b, i, HAL_MOTOR_BRAKE, 7);
+        else
+            hal_motor(b, i, HAL_MOTOR_FLOAT, 0);
     }
 }
 
@@ -90,26 +81,27 @@ void outputs_changed(struct rcx *b)
         apply(b, i);
 }
 
+/* A pause that ends lets its motor be driven as its registers say; the others stay as they are (apply() changes
+ * nothing where nothing changed). */
 void outputs_tick(struct rcx *b)
 {
-    u8 i;
-    for (i = 0; i < RCX_MOTORS; i++)
-        if (b->out.pause[i] && !--b->out.pause[i])
-            apply(b, i);
-}
+    u8 n = RCX_MOTORS, *pause = b->out.pause;
 
-/* firm0328 always sets bits 4-5 here (reference-firmware.md); bit 6 is not part of this layout. */
-u8 outputs_global_status(const struct rcx *b, u8 i)
-{
-    return (u8)((b->out.global[i] & 0x8F) | 0x30);
+    do
+        if (*pause)
+            --*pause;
+    while (pause++, --n);
+    outputs_changed(b);
 }
 
 void outputs_update(struct rcx *b, u8 list, u16 change)
 {
-    u8 *reg = (list & OUTPUTS_GLOBAL) ? b->out.global : b->out.motor, n = RCX_MOTORS;
+    u8 *reg = b->out.motor;
 
+    if (list & OUTPUTS_GLOBAL)
+        reg = b->out.global;
     /* The bytes of `change` used where they are: copied into variables of their own, one spills to the stack. */
-    for (; n; n--, reg++, list >>= 1)
+    for (list &= ALL_MOTORS; list; list >>= 1, reg++)
         if (list & 1)
             *reg = (u8)((*reg & ~(change >> 8)) ^ change);
     outputs_changed(b);

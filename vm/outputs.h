@@ -21,16 +21,18 @@ struct rcx;
 struct rcx_outputs {
     u8 motor[3];   /* on/off, brake/float, direction, power as set by the program */
     u8 global[3];  /* connected (off: brake or float), direction normal, max power */
-    u8 applied[3]; /* what hal_motor() was last told: level << 2 | mode (enum hal_motor_mode) */
+    u8 applied[3]; /* what hal_motor() was last told, as a status byte: on, forward, power; or off: brake or 0 */
     u8 pause[3];   /* milliseconds left of a reversing pause */
 };
-#define outputs_mode(b, i) ((u8)((b)->out.applied[i] & 3)) /* enum hal_motor_mode now on the wire */
+#define outputs_applied(b, i) ((b)->out.applied[i]) /* the state now on the wire, as rcx_outputs.applied */
 
 void outputs_init(struct rcx *b);          /* power-on and switching off: connected; forward, brake, full power */
 void outputs_changed(struct rcx *b);       /* registers were written: recompute and apply */
 void outputs_tick(struct rcx *b);          /* every 1 ms */
 u8 outputs_status(const struct rcx *b, u8 motor);  /* source 3 */
-u8 outputs_global_status(const struct rcx *b, u8 motor); /* source 17 */
+/* Source 17: firm0328 always sets bits 4-5 (reference-firmware.md); bit 6 is not part of this layout. A macro: shorter
+ * than a call. */
+#define outputs_global_status(b, motor) ((u8)(((b)->out.global[motor] & 0x8F) | 0x30))
 
 /* Registers of the motors in `list` (bit 0 A, 1 B, 2 C; with OUTPUTS_GLOBAL the global ones): the bits of
  * OUTPUTS_CHANGE's `clear` cleared, then those of its `flip` flipped; then the result is applied. */

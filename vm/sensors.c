@@ -96,15 +96,23 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     return s;
 }
 
+struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode)
+{
+    struct rcx_sensor *s = sensor_clear(b, n);
+
+    if (s)
+        s->mode = mode;
+    return s;
+}
+
 void sensor_set_type(struct rcx *b, u8 n, u8 type)
 {
     struct rcx_sensor *s;
     u16 raw;
 
-    if (type >= sizeof default_mode || !(s = sensor_clear(b, n)))
+    if (type >= sizeof default_mode || !(s = sensor_set_mode(b, n, default_mode[type])))
         return;
     s->type = type;
-    s->mode = default_mode[type];
     s->boolean = 0;
     /* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
     raw = s->raw;
@@ -113,14 +121,6 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     s->phase = rotation_phase(raw);
     /* Light and rotation sensors are active: they take their power from the input (rcx-hardware.md §3.3). */
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
-}
-
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode)
-{
-    struct rcx_sensor *s = sensor_clear(b, n);
-
-    if (s)
-        s->mode = mode;
 }
 
 /* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
@@ -134,7 +134,7 @@ static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
         return SENSOR_TEMP_INVALID;
     v = celsius(raw);
     if (mode == SENSOR_MODE_FAHRENHEIT)
-        v = (s16)(v * 9 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result */
+        v = (s16)(v + v * 4 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result (v * 4 / 5 has v's sign) */
     return v;
 }
 
@@ -162,18 +162,19 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* Steps the rotation sensor turned since the last valid sample: +1, -1 or 0, by the change of phase (mod 4). A jump of
- * two phases cannot tell the direction and counts nothing. */
-static const s8 step_of[4] = { 0, 1, 0, -1 };
-
-static s8 rotation_step(struct rcx_sensor *s, u16 raw)
+/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
+ * mode the steps are counted into the value. */
+static void turn(struct rcx_sensor *s, u16 raw)
 {
-    u8 phase = rotation_phase(raw), was = s->phase;
+    u8 phase = rotation_phase(raw), was = s->phase, d = (u8)((phase - was) & 3);
 
     if (phase == PHASE_NONE)
-        return 0;
+        return;
     s->phase = phase;
-    return was == PHASE_NONE ? 0 : step_of[(phase - was) & 3];
+    /* The change of phase (mod 4) since the last valid sample: 1 a step up, 3 a step down; a jump of two phases cannot
+     * tell the direction and counts nothing. */
+    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE && d & 1)
+        s->value = (s16)(s->value + 2 - d);
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
@@ -184,7 +185,6 @@ RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by h
 static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
-    s8 step;
     s16 v;
     u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
@@ -194,7 +194,7 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     s->quiet = raw | SENSOR_STEADY;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
-    step = rotation_step(s, raw);
+    turn(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
     v = s->value;
@@ -207,9 +207,7 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
         v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
     else if (mode == SENSOR_MODE_PERIODS)
         v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
-    else if (mode == SENSOR_MODE_ANGLE)
-        v = (s16)(v + step);
-    else
+    else if (mode != SENSOR_MODE_ANGLE) /* (counted by turn()) */
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;

@@ -53,7 +53,7 @@ struct rcx_sensor {
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
-void sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: the value restarts from 0 */
+struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: value from 0; as sensor_clear */
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
 /* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event's watch changes) when a sample of every

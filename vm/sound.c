@@ -14,9 +14,11 @@ static const u16 sound_tones[] = { 1389, 1295, 1196, 1096, 996, 893, 796, 694, 5
 #define TONE_BUZZ 11
 #define REST 12
 
-/* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. */
+/* Note lengths in 10 ms, by the length code of a note; code 0 ends a system sound. A note is its tone and length
+ * code in one byte, the code in the low three bits (fewer shifts to take the tone than a nibble). */
 static const u8 note_lengths[] = { 0, 2, 4, 16, 6, 7, 100 };
-#define NOTE(tone, code) ((u8)((code) << 4 | (tone)))
+#define NOTE(tone, code) ((u8)((tone) << 3 | (code)))
+RCX_STATIC_ASSERT(notes_fit, sizeof note_lengths <= 8 && sizeof sound_tones / sizeof sound_tones[0] <= 32);
 #define SWEEP(code, a, b, c, d, e, f, g, h, i, j) NOTE(a, code), NOTE(b, code), NOTE(c, code), NOTE(d, code), \
     NOTE(e, code), NOTE(f, code), NOTE(g, code), NOTE(h, code), NOTE(i, code), NOTE(j, code)
 
@@ -56,13 +58,12 @@ static void enqueue(struct rcx *b, u16 hz, u8 len)
 /* Duration 0 plays 10 ms, as firm0328 does (reference-firmware.md). */
 void sound_tone(struct rcx *b, u16 hz, u8 dur10)
 {
-    if (b->sound.muted)
-        return;
     if (!dur10)
         dur10 = 1;
     if (hz < SOUND_MIN_HZ || hz > SOUND_MAX_HZ)
         hz = 0;
-    enqueue(b, hz, dur10);
+    if (!b->sound.muted)
+        enqueue(b, hz, dur10);
 }
 
 void sound_ui(struct rcx *b, u8 sound)
@@ -89,16 +90,9 @@ static void play(struct rcx *b, u16 hz)
 
 void sound_clear(struct rcx *b)
 {
-    b->sound.count = 0;
     b->sound.left = 0;
+    b->sound.count = 0;
     play(b, 0);
-}
-
-void sound_mute(struct rcx *b, u8 on)
-{
-    b->sound.muted = on;
-    if (on)
-        sound_clear(b);
 }
 
 /*
@@ -121,8 +115,8 @@ void sound_tick(struct rcx *b)
             s->queue[0].len = 0;
         } else {
             code = system_notes[hz];
-            hz = sound_tones[code & 15];
-            len = note_lengths[code >> 4];
+            hz = sound_tones[code >> 3];
+            len = note_lengths[code & 7];
             s->queue[0].hz++;
         }
         if (len) {
@@ -131,5 +125,5 @@ void sound_tick(struct rcx *b)
             return;
         }
     }
-    play(b, 0);
+    sound_clear(b); /* the queue ran out (left and count are 0 already): silence */
 }

@@ -22,18 +22,19 @@ struct sound_entry {
 };
 
 struct rcx_sound {
-    u16 left;      /* milliseconds left of the current note; 0 = none started (first: the most used field) */
+    struct sound_entry queue[SOUND_QUEUE]; /* (first: at the address of the whole, the most used field) */
+    u16 left;      /* milliseconds left of the current note; 0 = none started */
     u16 sounding;  /* the frequency hal_sound() was last given */
     u8 muted;      /* MuteSound: program sounds ignored, system sounds of the user interface still play */
     u8 count;      /* entries queued from queue[0], the playing one included */
-    struct sound_entry queue[SOUND_QUEUE];
 };
 
 void sound_tone(struct rcx *b, u16 hz, u8 dur10);   /* PlayTone/PlayToneVar from a program or host */
 void sound_system(struct rcx *b, u8 sound);         /* PlaySystemSound 0-5 from a program or host */
 void sound_ui(struct rcx *b, u8 sound);             /* a system sound of the user interface (never muted) */
 void sound_clear(struct rcx *b);                    /* ClearSound: queue emptied, silence at once */
-void sound_mute(struct rcx *b, u8 on);              /* MuteSound / UnmuteSound */
+/* MuteSound / UnmuteSound: muting also clears the queue. A macro, for its one caller: shorter than a call. */
+#define sound_mute(b, on) do { if (((b)->sound.muted = (on)) != 0) sound_clear(b); } while (0)
 void sound_tick(struct rcx *b);                     /* every 1 ms */
 
 #endif
