@@ -124,6 +124,7 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
  * addr is at least 0x8000 and addr + count does not pass 0xFFFF (vm_direct checks), so a byte below the arena is at
  * most 0x7FFF below it: its offset wraps to 0x8001 or more, past the arena like the bytes above it.
  */
+RCX_STATIC_ASSERT(single_deletes_odd, (D_DELETE_TASK & 1) && (D_DELETE_SUB & 1) && !(D_DELETE_ALL_TASKS & 1) && !(D_DELETE_ALL_SUBS & 1));
 RCX_STATIC_ASSERT(arena_offsets_wrap_past_it, RCX_ARENA_SIZE <= 0x8001u);
 static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 {
@@ -167,7 +168,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
             id = RCX_SUBS;
             end = RCX_SLOT_OBJS;
         }
-        if (op & 7) {              /* one of them */
+        if (c & 1) {               /* one of them: D_DELETE_TASK, D_DELETE_SUB */
             if (cmd[1] >= (u8)(end - id))
                 return 1;          /* out of range: nothing */
             id = (u8)(id + cmd[1]);
@@ -199,7 +200,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
     case D_BOOT_MODE:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key))
             return 1;              /* a wrong key gets a bare acknowledgement */
-        if (op == RCX_OP_BOOT_MODE) {
+        if (c == D_BOOT_MODE) {
             b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
             return 1;
         }
