@@ -136,11 +136,11 @@ static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
     return count;
 }
 
-u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
+u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
 {
     u8 op = (u8)(cmd[0] & ~RCX_TOGGLE);
     u8 flags = rcx_opflags[rcx_op_index(op)];
-    u8 *out = reply + 1, c; /* the reply after its opcode */
+    u8 c;
 
 #if RCX_SWAN
     if (op == RCX_SW_MSG_WORD && len >= 4)
@@ -150,7 +150,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply)
         return 0;                  /* unknown or program-only: not answered */
     if (len <= (flags & 7))
         return 0;                  /* truncated (ContinueDL's 5: its header) */
-    reply[0] = (u8)~cmd[0];
+    *out++ = (u8)~cmd[0];          /* the reply's opcode; out is then the rest of the reply */
     for (c = 0; c < sizeof direct_ops && direct_ops[c] != op; c++)
         ;
 
