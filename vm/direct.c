@@ -36,17 +36,14 @@ static void release(struct rcx *b, u8 id)
 {
     u8 n, obj;
 
-    if (id >= RCX_SUBS) {
-        sched_stop_task(b, (u8)(id - RCX_SUBS));
-    } else {
-        /* A task in its own body (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle
-         * task changes nothing. */
-        for (n = 0; n < RCX_TASKS; n++) {
-            const struct rcx_task *t = &b->task[n];
+    /* The task itself (id - RCX_SUBS wraps past every task for a subroutine), or every task inside the subroutine
+     * (a task's sub and ret_sub are subroutines or RCX_NO_SUB, never a task's id). A task in its own body
+     * (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle task changes nothing. */
+    for (n = 0; n < RCX_TASKS; n++) {
+        const struct rcx_task *t = &b->task[n];
 
-            if (t->sub == id || (t->has_ret && t->ret_sub == id))
-                sched_stop_task(b, n);
-        }
+        if (n == (u8)(id - RCX_SUBS) || t->sub == id || (t->has_ret && t->ret_sub == id))
+            sched_stop_task(b, n);
     }
     obj = rcx_obj_sub(b->prog, id);
     if (!(b->dl.active && b->dl.obj == obj))
@@ -162,20 +159,21 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
     case D_DELETE_SUB: {
-        u8 id = 0, end = RCX_SUBS;  /* all the subroutines, or all the tasks */
+        u8 id = 0, n = RCX_SUBS;    /* all the subroutines, or all the tasks */
 
         if (c <= D_DELETE_TASK) {
             id = RCX_SUBS;
-            end = RCX_SLOT_OBJS;
+            n = RCX_TASKS;
         }
         if (c & 1) {               /* one of them: D_DELETE_TASK, D_DELETE_SUB */
-            if (cmd[1] >= (u8)(end - id))
+            if (cmd[1] >= n)
                 return 1;          /* out of range: nothing */
             id = (u8)(id + cmd[1]);
-            end = (u8)(id + 1);
+            n = 1;
         }
-        for (; id < end; id++)
-            release(b, id);
+        do
+            release(b, id++);
+        while (--n);
         return 1;
     }
     case D_BATTERY:
