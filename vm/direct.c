@@ -198,7 +198,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
     case D_BOOT_MODE:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key))
             return 1;              /* a wrong key gets a bare acknowledgement */
-        if (c == D_BOOT_MODE) {
+        if (op == RCX_OP_BOOT_MODE) {
             b->boot_mode = 1;      /* the runtime answers, then hands the brick to the ROM */
             return 1;
         }
