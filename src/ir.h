@@ -42,8 +42,8 @@ struct rcx_ir {
                            the brick transmits); the last reply from rx[reply_at] */
 
     /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed; IR messages
-     * (F7, FF) never are. Starts as F7, so that the first packet is always new, and becomes F7 again once a packet
-     * reaches into the reply, which then can no longer be sent again. */
+     * (F7, FF) never are. Becomes F7 once a packet reaches into the reply, which then can no longer be sent again:
+     * so the first packet is always new (reply_at starts at 0, and its first byte reaches it). */
     u8 last_op;
     u8 reply_len;       /* 0: the last command has no reply */
     u8 reply_at;        /* where in rx the last reply is: after its command and after the chunk */
@@ -79,9 +79,9 @@ enum {
 #define IR_PACK_CHECKSUM 0x04   /* a checksum byte (always present with IR_PACK_COMPLEMENT) */
 #define IR_PACK_STANDARD 0x07
 
-/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll(), and the first packet is
- * new. A macro: rt_init() is its one user. */
-#define ir_init(k) ((k)->ir.range = 0xFF, (k)->ir.last_op = RCX_OP_MESSAGE)
+/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll() (and the first packet is new
+ * without more: last_op). A macro: rt_init() is its one user. */
+#define ir_init(k) ((k)->ir.range = 0xFF)
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
