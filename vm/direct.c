@@ -9,7 +9,8 @@ static const u8 unlock_key[5] = { 1, 3, 5, 7, 11 };
 /* ROM 3.1 and firmware 3.28 ("3.2.8") so that host tools treat the brick as firm0328 (reference-firmware.md). */
 static const u8 versions[8] = { 0x00, 0x03, 0x00, 0x01, 0x00, 0x03, 0x02, 0x08 };
 
-/* The commands answered here, in the order of the D_* cases of vm_direct(): a dense switch is a jump table. */
+/* The commands only the host sends (RCX_DIRECT alone), as vm_direct() numbers them: direct_ops[D_x] is D_x's opcode,
+ * and the dense switch on the number is a jump table. */
 enum {
     D_MEMMAP, D_BATTERY, D_DELETE_ALL_TASKS, D_DELETE_TASK, D_DELETE_ALL_SUBS, D_DELETE_SUB, D_POLL, D_UPLOAD_RAM,
     D_UPLOAD_DATALOG, D_UNLOCK_BRICK, D_BEGIN_TASK, D_BEGIN_SUB, D_CONTINUE_DL, D_BOOT_MODE, D_BEGIN_FIRMWARE,
@@ -151,10 +152,19 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
     for (c = 0; c < sizeof direct_ops && direct_ops[c] != op; c++)
         ;
 
-    /* Each case returns the reply's length, its opcode included (0: no reply). */
+    /* Each case returns the reply's length, its opcode included (0: no reply). Their order is the one that leaves
+     * the fewest branches too far for the H8's short ones (measured). */
     switch (c) {
-    case D_MEMMAP:
-        return (u8)(1 + mem_memmap(b, out));
+    default: /* a command programs have too (RCX_DIRECT | RCX_PROGRAM) */
+        /* A program started from the host (nqc -run) begins as one started with Run does (reference-firmware.md). */
+        if (op == RCX_OP_START_TASK && !cmd[1])
+            outputs_program_start(b);
+        ops_exec(b, NULL, cmd);
+        /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
+         * SetDatalog makes 1, when memory is short (reference-firmware.md). The byte is written whatever the class:
+         * the reply's length decides whether it goes out. */
+        out[0] = op == RCX_OP_SET_DATALOG && !b->log_size;
+        return (u8)(flags >> 5);
     case D_DELETE_ALL_TASKS:
     case D_DELETE_TASK:
     case D_DELETE_ALL_SUBS:
@@ -176,24 +186,6 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
         while (--n);
         return 1;
     }
-    case D_BATTERY:
-    case D_POLL: {
-        u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
-        out[0] = (u8)v;
-        out[1] = (u8)(v >> 8);
-        return 3;
-    }
-    case D_UPLOAD_RAM: {
-        u16 addr = RCX_LE16(cmd + 1);
-        /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
-        if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
-            return 0;
-        return (u8)(1 + upload_ram(b, addr, cmd[3], out));
-    }
-    case D_UPLOAD_DATALOG: {
-        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), out);
-        return bytes < 0 ? 0 : (u8)(1 + bytes);
-    }
     case D_UNLOCK_BRICK:
     case D_BOOT_MODE:
         if (memcmp(cmd + 1, unlock_key, sizeof unlock_key))
@@ -214,20 +206,31 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
             return 0;
         out[0] = continue_download(b, cmd);
         return 2;
+    case D_UPLOAD_DATALOG: {
+        s16 bytes = datalog_upload(b, RCX_LE16(cmd + 1), RCX_LE16(cmd + 3), out);
+        return bytes < 0 ? 0 : (u8)(1 + bytes);
+    }
+    case D_UPLOAD_RAM: {
+        u16 addr = RCX_LE16(cmd + 1);
+        /* Only the start address is checked; out of range or over 150 bytes: no reply at all. */
+        if (addr < 0x8000u || addr >= 0xFD80u || cmd[3] > 150)
+            return 0;
+        return (u8)(1 + upload_ram(b, addr, cmd[3], out));
+    }
+    case D_MEMMAP:
+        return (u8)(1 + mem_memmap(b, out));
     case D_BEGIN_FIRMWARE:
     case D_UNLOCK_FIRMWARE:
         return 0;                  /* only the ROM's download mode answers these */
     case D_REMOTE:
         remote_command(b, RCX_LE16(cmd + 1));
         return 0;
+    case D_BATTERY:
+    case D_POLL: {
+        u16 v = c == D_POLL ? (u16)source_poll(b, cmd) : b->battery_mv;
+        out[0] = (u8)v;
+        out[1] = (u8)(v >> 8);
+        return 3;
     }
-    /* A program started from the host (nqc -run) begins as one started with Run does (reference-firmware.md). */
-    if (op == RCX_OP_START_TASK && !cmd[1])
-        outputs_program_start(b);
-    ops_exec(b, NULL, cmd);
-    /* Reply class 0: no reply (InternMessage, SendUARTData); 1: the opcode alone; 2: a status byte, which only
-     * SetDatalog makes 1, when memory is short (reference-firmware.md). The byte is written whatever the class: the
-     * reply's length decides whether it goes out. */
-    out[0] = op == RCX_OP_SET_DATALOG && !b->log_size;
-    return (u8)(flags >> 5);
+    }
 }
