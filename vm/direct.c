@@ -54,11 +54,13 @@ static void release(struct rcx *b, u8 id)
 /* 0x25, 0x35: opcode, 0, number, 0, size(2). */
 static u8 begin_download(struct rcx *b, const u8 *cmd)
 {
-    u8 id = cmd[2];
+    u8 id = cmd[2], n = RCX_SUBS;
 
-    if (!(cmd[0] & 0x10))          /* BeginOfTask 0x25, not BeginOfSub 0x35 */
-        id = (u8)(id < RCX_TASKS ? id + RCX_SUBS : 0xFF);
-    else if (id >= RCX_SUBS)
+    if (!(cmd[0] & 0x10)) {        /* BeginOfTask 0x25, not BeginOfSub 0x35 */
+        n = RCX_TASKS;
+        id = (u8)(id + RCX_SUBS);
+    }
+    if (cmd[2] >= n)
         id = 0xFF;
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
