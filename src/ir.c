@@ -19,7 +19,7 @@ static const u8 preamble[3] = { 0x55, 0xFF, 0x00 };
 
 u8 ir_busy(struct rcx_brick *k)
 {
-    if (k->ir.echo || k->ir.tx_pos < k->ir.tx_total)
+    if (k->ir.echo || k->ir.tx_left)
         return 1;
     return hal_ir_busy(&k->vm);
 }
@@ -108,7 +108,7 @@ void ir_tick(struct rcx_brick *k)
     if (quiet >= IR_QUIET_MS && ir->rx_state != IR_RX_READY)
         ir->rx_state = IR_RX_IDLE;
     /* An echo byte lost (or garbled into nothing) must not deafen the receiver for good. */
-    if (ir->echo && k->ir.tx_pos >= k->ir.tx_total && !hal_ir_busy(&k->vm)) { /* nothing being sent */
+    if (ir->echo && !ir->tx_left && !hal_ir_busy(&k->vm)) { /* nothing being sent */
         if (++ir->echo_quiet >= IR_ECHO_MS)
             ir->echo = 0;
     } else {
@@ -139,16 +139,20 @@ static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
     const u8 *p;
     u8 sum, pack = k->ir.tx_pack;
-    u16 total = len;
+    u16 left = len;
 
     k->ir.tx_src_len = len;
-    /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
-    k->ir.tx_pos = pack & IR_PACK_PREAMBLE ? 0 : 3;
     if (pack & IR_PACK_COMPLEMENT)
-        total = (u16)(2 * total + 2);
+        left = (u16)(2 * left + 2);
     else if (pack & IR_PACK_CHECKSUM)
-        total++;
-    k->ir.tx_total = (u16)(total + 3);
+        left++;
+    /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
+    k->ir.tx_pos = 3;
+    if (pack & IR_PACK_PREAMBLE) {
+        k->ir.tx_pos = 0;
+        left += 3;
+    }
+    k->ir.tx_left = left;
     for (p = k->ir.tx_src, sum = 0; len; len--)
         sum = (u8)(sum + *p++);
     k->ir.tx_sum = sum;
@@ -180,7 +184,7 @@ void ir_poll(struct rcx_brick *k)
         k->ir.range = k->vm.tx_range;
         hal_ir_range(&k->vm, k->ir.range);
     }
-    if (k->ir.tx_pos >= k->ir.tx_total) {
+    if (!k->ir.tx_left) {
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
         if (k->ir.rx_state == IR_RX_READY && k->ir.quiet >= IR_REPLY_MS) {
             execute(k);
@@ -211,13 +215,13 @@ void ir_poll(struct rcx_brick *k)
     }
 send:
     /* Hand the next piece of the packet to the driver once it has sent the previous one. */
-    if (k->ir.tx_pos >= k->ir.tx_total || hal_ir_busy(&k->vm))
+    if (!k->ir.tx_left || hal_ir_busy(&k->vm))
         return;
     n = 0;
     pos = k->ir.tx_pos;
     do
         k->ir.rx[n++] = framed(k, pos++);
-    while (n < IR_CHUNK && pos < k->ir.tx_total);
+    while (--k->ir.tx_left && n < IR_CHUNK);
     k->ir.tx_pos = pos;
     k->ir.echo = (u16)(k->ir.echo + n);
     hal_ir_send(&k->vm, k->ir.rx, n, k->ir.tx_mode);

@@ -54,10 +54,10 @@ struct rcx_ir {
     u8 tx_pack;         /* IR_PACK_* below */
     u8 tx_mode;         /* HAL_IR_* */
     u8 tx_sum;
-    /* Positions in the framed packet, counted from the preamble's first byte even when it has none (tx_pos then
-     * starts at 3): the next byte, and the end. */
+    /* The next byte's position in the framed packet, counted from the preamble's first byte even when it has none
+     * (tx_pos then starts at 3), and the bytes not handed to the driver yet (nonzero: a packet goes out). */
     u16 tx_pos;
-    u16 tx_total;
+    u16 tx_left;
     u16 echo;           /* own bytes not heard back yet */
     u8 echo_quiet;      /* milliseconds since the transmitter went idle with echo outstanding */
     u8 range;           /* range last given to hal_ir_range() */
@@ -91,7 +91,7 @@ void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies an
  * With nothing being sent, no packet to answer, no request (nor a message to follow its parameter) and the range as
  * it was, there is nothing to poll for. */
 #define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
-#define ir_poll_due(k) ((k)->ir.tx_pos < (k)->ir.tx_total || (k)->ir.rx_state == IR_RX_READY || \
+#define ir_poll_due(k) ((k)->ir.tx_left || (k)->ir.rx_state == IR_RX_READY || \
                         (k)->vm.remote.tx_len || (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
 u8 ir_busy(struct rcx_brick *k);   /* nonzero while something is being sent or an echo is outstanding */
 #define ir_idle(k) (!ir_busy(k))
