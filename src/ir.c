@@ -79,7 +79,7 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
     }
     /* Looking for a packet, or a byte that is not the complement (it may begin the next packet): a header byte, or
      * the opcode. */
-    if (st != IR_RX_VALUE && st != IR_RX_OPCODE) {
+    if (st < IR_RX_OPCODE) {       /* IDLE, COMPLEMENT */
         if (byte == 0x55 || byte == 0xFF) {
             ir->rx_state = IR_RX_IDLE;
             return;
