@@ -30,7 +30,12 @@ static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
 {
     u8 n = ir->rx_len;
 
-    if (n == ir->rx_need) { /* the checksum */
+    if (!n) {                      /* the opcode: how many bytes follow it */
+        u8 p = (u8)(v & 7);        /* rcx_op_nominal_params(), in byte arithmetic */
+        if (p >= 6)
+            p = (u8)(p - 6);
+        ir->rx_need = (u8)(p + 1);
+    } else if (n == ir->rx_need) { /* the checksum */
         ir->rx_state = v == ir->rx_sum ? IR_RX_READY : IR_RX_IDLE;
         return;
     }
@@ -40,12 +45,7 @@ static __attribute__((noinline)) void accept(struct rcx_ir *ir, u8 v)
     ir->rx_len = n;
     ir->rx_sum = (u8)(ir->rx_sum + v);
     ir->rx_state = IR_RX_VALUE;
-    if (n == 1) {                  /* v is the opcode */
-        v &= 7;                    /* rcx_op_nominal_params(), in byte arithmetic */
-        if (v >= 6)
-            v = (u8)(v - 6);
-        ir->rx_need = (u8)(v + 1);
-    } else if (n == 5 && (u8)(ir->rx[0] | RCX_TOGGLE) == (RCX_OP_CONTINUE_DL | RCX_TOGGLE)) {
+    if (n == 5 && (u8)(ir->rx[0] | RCX_TOGGLE) == (RCX_OP_CONTINUE_DL | RCX_TOGGLE)) {
         if (ir->rx[4] || ir->rx[3] > IR_BLOCK_MAX)
             ir->rx_state = IR_RX_DRAIN;
         ir->rx_need = (u8)(6 + ir->rx[3]); /* + data + block checksum */
@@ -89,10 +89,9 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
             return;
         }
     }
-    if (st != IR_RX_VALUE) {
+    if (st != IR_RX_VALUE) {       /* a new packet: its opcode */
         ir->rx_len = 0;
         ir->rx_sum = 0;
-        ir->rx_need = 1;
     }
     ir->rx_value = byte;
     ir->rx_state = IR_RX_COMPLEMENT;
