@@ -1,4 +1,5 @@
-/* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. */
+/* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. On the brick
+ * they run from .high (linker/openrcx.ld), as IR and user interface do. */
 #include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
@@ -18,8 +19,7 @@ void rt_init(struct rcx_brick *k, u16 arena_addr)
 
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
-    if (ir_poll_due(k))
-        ir_poll(k);
+    ir_poll(k);                /* (a test here whether it has work would cost more room in .high than time) */
     /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a
      * downloader sends the next command the moment it has the reply. */
     if (k->vm.boot_mode && !ir_busy(k)) {
