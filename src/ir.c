@@ -132,7 +132,7 @@ static u8 framed(const struct rcx_brick *k, u16 pos)
     return (u8)(v ^ flip);
 }
 
-/* Start sending the `len` bytes at tx_src, framed as tx_pack says. Out of line, so that ir_poll() keeps its
+/* Start sending the `len` (not 0) bytes at tx_src, framed as tx_pack says. Out of line, so that ir_poll() keeps its
  * registers. */
 static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
@@ -152,8 +152,11 @@ static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
         left += 3;
     }
     k->ir.tx_left = left;
-    for (p = k->ir.tx_src, sum = 0; len; len--)
+    p = k->ir.tx_src;
+    sum = 0;
+    do                             /* len is not 0 */
         sum = (u8)(sum + *p++);
+    while (--len);
     k->ir.tx_sum = sum;
 }
 
