@@ -138,7 +138,7 @@ static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
 {
     const u8 *p;
     u8 sum, pack = k->ir.tx_pack;
-    u16 left = len;
+    u16 left = len, pos = 3;
 
     k->ir.tx_src_len = len;
     if (pack & IR_PACK_COMPLEMENT)
@@ -146,11 +146,11 @@ static __attribute__((noinline)) void tx_start(struct rcx_brick *k, u8 len)
     else if (pack & IR_PACK_CHECKSUM)
         left++;
     /* Positions are counted from the preamble's first byte, which a packet without it starts after. */
-    k->ir.tx_pos = 3;
     if (pack & IR_PACK_PREAMBLE) {
-        k->ir.tx_pos = 0;
+        pos = 0;
         left += 3;
     }
+    k->ir.tx_pos = pos;
     k->ir.tx_left = left;
     p = k->ir.tx_src;
     sum = 0;
