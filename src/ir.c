@@ -179,7 +179,7 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    u8 n, len = 0;
+    u8 n, len = 0, pack, mode;
     u16 pos;
 
     if (k->ir.range != k->vm.tx_range) {
@@ -192,8 +192,8 @@ void ir_poll(struct rcx_brick *k)
             execute(k);
             k->ir.tx_src = k->ir.rx + k->ir.reply_at;
             len = k->ir.reply_len;
-            k->ir.tx_pack = IR_PACK_STANDARD;
-            k->ir.tx_mode = 0;
+            pack = IR_PACK_STANDARD;
+            mode = 0;
         } else if ((k->vm.remote.tx_len || (RCX_SWAN && k->vm.remote.follow)) && k->ir.rx_state == IR_RX_IDLE &&
                    k->ir.quiet >= IR_SENSE_MS && !ir_busy(k)) {
 #if RCX_SWAN
@@ -205,12 +205,14 @@ void ir_poll(struct rcx_brick *k)
              * on. */
             k->ir.tx_src = k->vm.remote.tx;
             len = k->vm.remote.tx_len;
-            k->ir.tx_pack = k->vm.remote.tx_pack;
-            k->ir.tx_mode = k->vm.remote.tx_mode;
+            pack = k->vm.remote.tx_pack;
+            mode = k->vm.remote.tx_mode;
             k->vm.remote.tx_len = 0;
         } else {
             goto send;
         }
+        k->ir.tx_pack = pack;
+        k->ir.tx_mode = mode;
         display_ir_activity(&k->vm); /* lit by every command received, as by the brick's own transmissions */
         if (len)
             tx_start(k, len);
