@@ -179,7 +179,8 @@ static void execute(struct rcx_brick *k)
 
 void ir_poll(struct rcx_brick *k)
 {
-    u8 n, len = 0, pack, mode;
+    u8 n, len, pack, mode;
+    const u8 *src;
     u16 pos;
 
     if (k->ir.range != k->vm.tx_range) {
@@ -190,7 +191,7 @@ void ir_poll(struct rcx_brick *k)
         /* Nothing being sent: the reply to a command, or what the machine asks to transmit. */
         if (k->ir.rx_state == IR_RX_READY && k->ir.quiet >= IR_REPLY_MS) {
             execute(k);
-            k->ir.tx_src = k->ir.rx + k->ir.reply_at;
+            src = k->ir.rx + k->ir.reply_at;
             len = k->ir.reply_len;
             pack = IR_PACK_STANDARD;
             mode = 0;
@@ -203,7 +204,7 @@ void ir_poll(struct rcx_brick *k)
             /* Only into a silent room: a brick or host that is talking would be drowned, and so would we. The
              * request is framed into the chunk at once (at most 37 bytes), so the machine may replace it from now
              * on. */
-            k->ir.tx_src = k->vm.remote.tx;
+            src = k->vm.remote.tx;
             len = k->vm.remote.tx_len;
             pack = k->vm.remote.tx_pack;
             mode = k->vm.remote.tx_mode;
@@ -211,6 +212,7 @@ void ir_poll(struct rcx_brick *k)
         } else {
             goto send;
         }
+        k->ir.tx_src = src;
         k->ir.tx_pack = pack;
         k->ir.tx_mode = mode;
         display_ir_activity(&k->vm); /* lit by every command received, as by the brick's own transmissions */
