@@ -84,14 +84,15 @@ enum {
 #define ir_init(k) ((k)->ir.range = 0xFF)
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
-/* Execute a complete packet, send replies and the machine's requests. With nothing being sent, no packet to answer,
- * no request (nor a message to follow its parameter) and the range as it was, it finds that out in a few tests: the
- * runtime calls it on every pass. */
-void ir_poll(struct rcx_brick *k);
-/* Whether ir_tick() can change anything: nearly every millisecond it cannot, and this is cheaper than the call. At
- * rest (nobody heard for IR_QUIET_MS, no echo outstanding or being timed) the receiver is back to looking for a
- * packet, and counting `quiet` further changes nothing: it is only compared with IR_QUIET_MS and smaller times. */
+void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
+/* Whether the call can change anything: nearly every millisecond it cannot, and these are cheaper than the calls.
+ * At rest (nobody heard for IR_QUIET_MS, no echo outstanding or being timed) the receiver is back to looking for a
+ * packet, and counting `quiet` further changes nothing: it is only compared with IR_QUIET_MS and smaller times.
+ * With nothing being sent, no packet to answer, no request (nor a message to follow its parameter) and the range as
+ * it was, there is nothing to poll for. */
 #define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
+#define ir_poll_due(k) ((k)->ir.tx_left || (k)->ir.rx_state == IR_RX_READY || (k)->vm.remote.tx_len || \
+                        (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
 u8 ir_busy(struct rcx_brick *k);   /* nonzero while something is being sent or an echo is outstanding */
 #define ir_idle(k) (!ir_busy(k))
 

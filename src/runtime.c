@@ -19,7 +19,8 @@ void rt_init(struct rcx_brick *k, u16 arena_addr)
 
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
-    ir_poll(k);                /* (a test here whether it has work would cost more room in .high than time) */
+    if (ir_poll_due(k))
+        ir_poll(k);
     /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a
      * downloader sends the next command the moment it has the reply. */
     if (k->vm.boot_mode && !ir_busy(k)) {
