@@ -100,7 +100,7 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error)
 void ir_tick(struct rcx_brick *k)
 {
     struct rcx_ir *ir = &k->ir;
-    u8 quiet = ir->quiet;
+    u8 quiet = ir->quiet, eq = 0; /* eq: echo_quiet's new value */
 
     if (quiet != 0xFF)
         ir->quiet = ++quiet;
@@ -108,11 +108,11 @@ void ir_tick(struct rcx_brick *k)
         ir->rx_state = IR_RX_IDLE;
     /* An echo byte lost (or garbled into nothing) must not deafen the receiver for good. */
     if (ir->echo && !ir->tx_left && !hal_ir_busy(&k->vm)) { /* nothing being sent */
-        if (++ir->echo_quiet >= IR_ECHO_MS)
+        eq = (u8)(ir->echo_quiet + 1);
+        if (eq >= IR_ECHO_MS)
             ir->echo = 0;
-    } else {
-        ir->echo_quiet = 0;
     }
+    ir->echo_quiet = eq;
 }
 
 /* Byte `pos` of the framed packet, counted as if it had the preamble (tx_start). */
