@@ -37,9 +37,14 @@ void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
  */
 u16 hw_battery_mv(u16 raw10)
 {
+    u16 x4, x28;
+
     if (raw10 > 1023)
         raw10 = 1023;
-    return (u16)(raw10 * 28u + rcx_divu8((u16)(raw10 * 38u + (raw10 >> 1)), 195));
+    /* The products by shifts and adds: gcc would call its 16-bit multiply helper for each. */
+    x4 = (u16)(raw10 << 2);
+    x28 = (u16)((x4 << 3) - x4);                                 /* raw × 32 - raw × 4 */
+    return (u16)(x28 + rcx_divu8((u16)(x28 + ((x4 + raw10) << 1) + (raw10 >> 1)), 195)); /* raw × (28 + 10) */
 }
 
 /*
@@ -129,22 +134,11 @@ u8 hw_debounce(struct hw_debounce *d, u8 raw, u8 now)
     return diff;
 }
 
-/*
- * PCF8566 commands (§3.6): MODE SET 48 = enabled, 1:4 multiplex, 1/3 bias (40 = disabled); DEVICE SELECT E0 =
- * sub-address 0; LOAD DATA POINTER 2i = image byte i. Bit 7 of a command means another command follows; the last
- * one has it clear and display bytes follow, the data pointer advancing by itself. Every update sends the mode and
- * the whole image (0.5 ms): the display engine calls only when something changed, and a controller that lost its
- * state for any reason is set right by the next update.
- */
-#define LCD_ADDRESS 0x7C
-#define LCD_MODE_ON 0x48
-#define LCD_MODE_OFF 0x40
-#define LCD_SELECT 0x60
-#define LCD_MORE 0x80
-
+/* Every update sends the mode and the whole image (0.5 ms): the display engine calls only when something changed,
+ * and a controller that lost its state for any reason is set right by the next update. */
 u8 hw_lcd_on_frame(const u8 *image, u8 *frame)
 {
-    static const u8 head[4] = { LCD_ADDRESS, LCD_MORE | LCD_MODE_ON, LCD_MORE | LCD_SELECT, 0 };
+    static const u8 head[4] = { HW_LCD_ADDRESS, HW_LCD_MORE | HW_LCD_MODE_ON, HW_LCD_MORE | HW_LCD_SELECT, 0 };
     const u8 *s = head;
     u8 n = 4;
 
@@ -156,13 +150,6 @@ u8 hw_lcd_on_frame(const u8 *image, u8 *frame)
         *frame++ = *image++;
     while (--n);
     return 4 + HW_LCD_BYTES;
-}
-
-u8 hw_lcd_off_frame(u8 *frame)
-{
-    frame[0] = LCD_ADDRESS;
-    frame[1] = LCD_MODE_OFF;
-    return 2;
 }
 
 /* When the ring is full the newest byte stays and is marked bad: the IR layer then drops the packet it was in. */

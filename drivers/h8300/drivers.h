@@ -33,7 +33,6 @@ void sci_service(void);             /* main loop: back to the default settings a
 void sci_drain(struct rcx_brick *k); /* main loop: received bytes to the runtime */
 extern struct hw_rx drv_rx;          /* the receive ring */
 extern u8 drv_sci_mode RCX_EIGHT;    /* the mode the SCI and carrier are set to */
-#define sci_waiting() (drv_rx.head != drv_rx.tail) /* sci_drain has bytes to deliver */
 void rcx_sci_isr(void);             /* byte received (with or without error), transmit data empty, sent */
 
 /* hal.c: the other outputs. */

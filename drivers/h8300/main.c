@@ -38,7 +38,8 @@ static u8 button_pins RCX_EIGHT;                 /* the button bits of P4 and P7
 static u8 battery_count RCX_EIGHT;
 static u16 battery_sum RCX_ONCHIP;
 
-int main(void);
+/* Never returns (crt0.s): nothing of its caller's to keep, so no registers saved (OS_Task). */
+int main(void) __attribute__((OS_Task));
 
 /* What irq.s takes for granted. */
 RCX_STATIC_ASSERT(slots_in_a_byte, DRV_AD_SLOTS * DRV_AD_SLOT == 0x20 && DRV_AD_SLOT == 8);
@@ -173,7 +174,8 @@ int main(void)
 
     /* No code: the arena's size as an absolute symbol, for drivers/size.sh and the free-memory check. */
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
-    H8_SYSCR &= (u8)~H8_SYSCR_SSBY; /* the ROM leaves it set: SLEEP in the idle loop must be a light sleep */
+    H8_BCLR(7, 0xc4);               /* SYSCR.SSBY (H8_SYSCR_SSBY): the ROM leaves it set, and SLEEP in the idle loop
+                                     * must be a light sleep */
     P4DR = 0x01;                    /* IR short range until the IR layer says otherwise */
     /* No code: where the tick interrupt (irq.s) sets rcx.yield. */
     __asm__ __volatile__(".global\t_drv_yield\n\t.set\t_drv_yield, _brick+%c0" ::"i"(offsetof(struct rcx_brick, vm.yield)));
@@ -194,10 +196,8 @@ int main(void)
 
     for (;;) {
         drv_woken = 0; /* what comes in from now on wakes the quiet milliseconds' sleep below */
-        if (sci_waiting())
-            sci_drain(&brick);
-        if (drv_sci_mode)
-            sci_service();
+        sci_drain(&brick); /* each returns at once when it has nothing to do */
+        sci_service();
         if ((u8)(drv_ms_ticks - seen) > TICKS_BACKLOG)
             seen = (u8)(drv_ms_ticks - TICKS_PER_PASS);
         /* Quiet milliseconds slept through or run through: all but the last counted at once. */
