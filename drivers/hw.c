@@ -18,14 +18,18 @@ void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
     if (level > 7)
         level = 7;
     mode &= 3;
-    bits = (u8)(mode * weight[port]); /* a byte multiply is one instruction, a shift by a variable a loop */
-    keep = (u8)~(3 * weight[port]);
     /* A brake shorts the motor: holding is all it does, so it is never pulsed. One phase for all outputs, so that a
      * new level takes over at the next millisecond without restarting a frame. */
     pattern = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
+    bits = weight[port];
+    keep = (u8)~(3 * bits);
+    bits = (u8)(mode * bits); /* a byte multiply is one instruction, a shift by a variable a loop */
     do {
-        *latch = (u8)((*latch & keep) | (pattern & 1 ? bits : 0));
-        latch++;
+        u8 v = (u8)(*latch & keep);
+
+        if (pattern & 1)
+            v |= bits;
+        *latch++ = v;
         pattern >>= 1;
     } while (--n);
 }
@@ -66,20 +70,25 @@ static const u16 tone_clock[6][3] = {
 u8 hw_tone(u16 hz, struct hw_tone *t)
 {
     const u16 *c = tone_clock[0];
-    u8 i = 0;
-    u16 lo;
+    u8 i = 2 * 0x09; /* clock i counted from 0x12: TCR 09 + i / 2 is then i / 2 */
+    u16 lo, hi;
 
-    if (hz < 31 || hz > 20000)
-        return 0; /* the ROM's play-tone range; outside it a rest */
-    while (hz < *c) {
+    if ((u16)(hz - 31) > 20000 - 31)
+        return 0; /* the ROM's play-tone range (31-20 000 Hz); outside it a rest */
+    for (;;) { /* not while (hz < *c): gcc would then load the first lowest tone twice */
+        if (hz >= *c)
+            break;
         c += 3;
         i++;
     }
-    /* TCORA + 1 = clock / (2 hz), rounded: (clock + hz) / (2 hz), a dividend of up to 23 bits */
-    lo = (u16)(c[2] + hz);
-    t->tcora = (u8)(rcx_udiv32_16(lo, (u16)(2 * hz), (u16)(c[1] + (lo < hz))) - 1);
-    t->tcr = (u8)(0x09 + (i >> 1)); /* 08 = clear on compare match A, plus the clock select */
+    t->tcr = (u8)(i >> 1); /* 08 = clear on compare match A, plus the clock select */
     t->icks0 = (u8)(~i & 1);
+    /* TCORA + 1 = clock / (2 hz), rounded: (clock + hz) / (2 hz), a dividend of up to 23 bits */
+    hi = c[1];
+    lo = (u16)(c[2] + hz);
+    if (lo < hz)
+        hi++;
+    t->tcora = (u8)(rcx_udiv32_16(lo, (u16)(hz + hz), hi) - 1);
     return 1;
 }
 
