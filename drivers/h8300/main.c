@@ -49,13 +49,18 @@ RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound
 
 #define BUTTON_PINS() ((u8)((P4DR & 0x06) | (P7PIN & 0xC0))) /* On-Off, Run; View, Prgm (hw_buttons) */
 
+/* The buttons the pins show, the pins noted for the main loop's next look (millisecond). */
+static __attribute__((noinline)) u8 buttons_of(u8 pins)
+{
+    button_pins = pins;
+    return hw_buttons(pins, pins);
+}
+
 /* FRT at 500 kHz, cleared on compare match A at 499: 1.000 ms per period (rcx-hardware.md §6). The buttons'
- * present state becomes the debounced one, without edges. */
+ * present state becomes the debounced one, without edges: last, with the interrupts still masked by both callers
+ * (and the tick interrupt leaves the buttons alone), so that `irq` is not kept across a call. */
 RCX_HIGH_CODE void drv_tick_start(u8 irq)
 {
-    button_pins = BUTTON_PINS();
-    buttons.state = hw_buttons(button_pins, button_pins);
-    buttons.cand = 0;
     FRT_TIER = 0;
     FRT_TCR = FRT_TCR_CLK_DIV32;
     H8_BCLR(4, 0x97);               /* TOCR.OCRS (FRT_TOCR_OCRS): FF94 addresses OCRA */
@@ -65,6 +70,8 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
     FRT_TCSR = FRT_TCSR_CCLRA;
     if (irq)
         FRT_TIER = FRT_TIER_OCIAE;
+    buttons.cand = 0;
+    buttons.state = buttons_of(BUTTON_PINS());
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
@@ -138,8 +145,7 @@ static __attribute__((noinline)) void buttons_changed(u8 pins)
 {
     u8 changed, state, i;
 
-    button_pins = pins;
-    changed = hw_debounce(&buttons, hw_buttons(pins, pins), drv_ms_ticks); /* the pins were read just now */
+    changed = hw_debounce(&buttons, buttons_of(pins), drv_ms_ticks); /* the pins were read just now */
     state = buttons.state;
     for (i = 0; changed; i++, changed >>= 1, state >>= 1)
         if (changed & 1)

@@ -86,7 +86,7 @@ void sci_start(u8 mode)
     drv_sci_mode = mode;
 }
 
-void sci_stop(void)
+RCX_HIGH_CODE void sci_stop(void)
 {
     SCI_SCR = 0;
     TMR1_TCR = 0;
@@ -121,7 +121,7 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
     }
 }
 
-void hal_ir_range(struct rcx *b, u8 far)
+RCX_HIGH_CODE void hal_ir_range(struct rcx *b, u8 far)
 {
     (void)b;
     if (far)
