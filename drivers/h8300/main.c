@@ -35,7 +35,7 @@ u8 drv_sensor_power RCX_EIGHT;
 /* The main loop's own: on-chip too, external RAM is left to the program memory. */
 static struct hw_debounce buttons RCX_EIGHT;
 static u8 button_pins RCX_EIGHT;                 /* the button bits of P4 and P7 when last looked at */
-static u8 battery_count RCX_EIGHT;
+static u8 battery_count RCX_EIGHT;              /* samples in battery_sum, in steps of 0x20: the eighth wraps to 0 */
 static u16 battery_sum RCX_ONCHIP;
 
 /* Never returns (crt0.s): nothing of its caller's to keep, so no registers saved (OS_Task). */
@@ -77,12 +77,11 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
 RCX_HIGH_CODE void drv_wait_ms(u8 ms)
 {
-    while (ms) {
-        if (FRT_TCSR & FRT_TCSR_OCFA) {
-            H8_BCLR(3, 0x91); /* TCSR.OCFA */
-            ms--;
-        }
-    }
+    do {
+        while (!(FRT_TCSR & FRT_TCSR_OCFA))
+            ;
+        H8_BCLR(3, 0x91); /* TCSR.OCFA */
+    } while (--ms);
 }
 
 /* hw_ad_raw10 as the H8/300 does it in 8 instructions: gcc makes a 16-bit shift by 6 a loop of 24. */
@@ -111,14 +110,16 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
         if ((u8)(drv_ad_done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any */
             seen = (u8)(drv_ad_done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* moment: skipped */
         slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
+        /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
+        p = s + 3;
+        i = 3;
         h8_irq_disable();
-        s[0] = slot[0];
-        s[1] = slot[1];
-        s[2] = slot[2];
+        do
+            *--p = *slot++;
+        while (--i);
         h8_irq_enable();
-        p = &s[hw_ad_channel(0)];
         for (i = 0; i < 3; i++)
-            rt_sensor_sample(&brick, i, ad_raw10(*p--));
+            rt_sensor_sample(&brick, i, ad_raw10(*p++));
         rt_sensors_at_rest(&brick);
         /* Only now: the interrupt compares a scan with this one only once it has been fed. */
         drv_ad_seen = (u8)(seen + DRV_AD_SLOT);
@@ -133,10 +134,10 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
 static __attribute__((noinline)) void battery_sample(void)
 {
     battery_sum += ad_raw10(AD_ADDR(HW_AD_BATTERY));
-    if (++battery_count == 8) {
+    battery_count = (u8)(battery_count + 0x20);
+    if (!battery_count) {
         rt_battery(&brick, hw_battery_mv(battery_sum >> 3));
         battery_sum = 0;
-        battery_count = 0;
     }
 }
 
@@ -171,7 +172,11 @@ static inline void millisecond(void)
  * asks twice. */
 static __attribute__((noinline)) u8 quiet_ms(void)
 {
-    return (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
+    u8 quiet = rt_quiet(&brick);
+
+    if (buttons.cand | drv_sci_mode)
+        quiet = 0;
+    return quiet;
 }
 
 int main(void)

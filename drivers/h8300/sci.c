@@ -131,7 +131,7 @@ RCX_HIGH_CODE void hal_ir_range(struct rcx *b, u8 far)
 }
 
 /* Another mode is for one transmission (a program's serial packet); the host talks at the default settings. */
-void sci_service(void)
+RCX_HIGH_CODE void sci_service(void)
 {
     if (drv_sci_mode && !hal_ir_busy(0))
         sci_start(0);
