@@ -144,13 +144,12 @@ static __attribute__((noinline)) void battery_sample(void)
 /* The buttons' pins changed, or a change is being timed: debounced, and each new state to the runtime. */
 static __attribute__((noinline)) void buttons_changed(u8 pins)
 {
-    u8 changed, state, i;
+    u8 changed, i, bit;
 
     changed = hw_debounce(&buttons, buttons_of(pins), drv_ms_ticks); /* the pins were read just now */
-    state = buttons.state;
-    for (i = 0; changed; i++, changed >>= 1, state >>= 1)
-        if (changed & 1)
-            rt_button(&brick, i, (u8)(state & 1));
+    for (i = 0, bit = 1; i < HW_BUTTONS; i++, bit <<= 1)
+        if (changed & bit)
+            rt_button(&brick, i, (u8)(buttons.state & bit));
 }
 
 /* One millisecond of the runtime: the samples, the buttons, then the clock. Inline in the main loop, which runs it a

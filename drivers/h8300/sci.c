@@ -98,7 +98,7 @@ RCX_HIGH_CODE void sci_stop(void)
 u8 hal_ir_busy(struct rcx *b)
 {
     (void)b;
-    return (u8)(tx_head != tx_tail || tx_active);
+    return (u8)((u8)(tx_head ^ tx_tail) | tx_active); /* non-zero: busy (hal.h) */
 }
 
 void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
