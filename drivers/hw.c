@@ -149,15 +149,13 @@ u8 hw_lcd_on_frame(const u8 *image, u8 *frame)
 {
     static const u8 head[4] = { HW_LCD_ADDRESS, HW_LCD_MORE | HW_LCD_MODE_ON, HW_LCD_MORE | HW_LCD_SELECT, 0 };
     const u8 *s = head;
-    u8 n = 4;
+    u8 n = 4 + HW_LCD_BYTES;
 
-    do
+    do { /* one loop, its source switched to the image once the head is copied */
         *frame++ = *s++;
-    while (--n);
-    n = HW_LCD_BYTES;
-    do
-        *frame++ = *image++;
-    while (--n);
+        if (n == HW_LCD_BYTES + 1)
+            s = image;
+    } while (--n);
     return 4 + HW_LCD_BYTES;
 }
 

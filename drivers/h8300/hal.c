@@ -49,13 +49,15 @@ RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 void hal_sound(struct rcx *b, u16 hz)
 {
     static struct hw_tone t RCX_EIGHT;
+    u8 ok;
 
     (void)b;
     if (hz == tone_hz)
         return; /* the same tone again: restarting the timer would only add a click */
     tone_hz = hz;
+    ok = hw_tone(hz, &t); /* before the timer is stopped: nothing kept across the call */
     TMR0_TCR = 0;
-    if (!hw_tone(hz, &t)) {
+    if (!ok) {
         p6ddr_set((u8)(p6ddr & ~P6_SPEAKER)); /* as the ROM leaves a silent speaker: pin released */
         return;
     }

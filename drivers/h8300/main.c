@@ -49,9 +49,11 @@ RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound
 
 #define BUTTON_PINS() ((u8)((P4DR & 0x06) | (P7PIN & 0xC0))) /* On-Off, Run; View, Prgm (hw_buttons) */
 
-/* The buttons the pins show, the pins noted for the main loop's next look (millisecond). */
-static __attribute__((noinline)) u8 buttons_of(u8 pins)
+/* The buttons as their pins show them now, the pins noted for the main loop's next look (millisecond). */
+static __attribute__((noinline)) u8 buttons_now(void)
 {
+    u8 pins = BUTTON_PINS();
+
     button_pins = pins;
     return hw_buttons(pins, pins);
 }
@@ -71,7 +73,7 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
     if (irq)
         FRT_TIER = FRT_TIER_OCIAE;
     buttons.cand = 0;
-    buttons.state = buttons_of(BUTTON_PINS());
+    buttons.state = buttons_now();
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
@@ -102,13 +104,13 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
-    u8 i, seen;
+    u8 i, seen, done;
 
-    while ((seen = drv_ad_seen) != drv_ad_done) {
+    while ((seen = drv_ad_seen) != (done = drv_ad_done)) {
         const volatile u16 *slot;
 
-        if ((u8)(drv_ad_done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any */
-            seen = (u8)(drv_ad_done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* moment: skipped */
+        if ((u8)(done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any moment: */
+            seen = (u8)(done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* skipped */
         slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
         /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
         p = s + 3;
@@ -142,11 +144,11 @@ static __attribute__((noinline)) void battery_sample(void)
 }
 
 /* The buttons' pins changed, or a change is being timed: debounced, and each new state to the runtime. */
-static __attribute__((noinline)) void buttons_changed(u8 pins)
+static __attribute__((noinline)) void buttons_changed(void)
 {
     u8 changed, i, bit;
 
-    changed = hw_debounce(&buttons, buttons_of(pins), drv_ms_ticks); /* the pins were read just now */
+    changed = hw_debounce(&buttons, buttons_now(), drv_ms_ticks); /* the pins read just now */
     for (i = 0, bit = 1; i < HW_BUTTONS; i++, bit <<= 1)
         if (changed & bit)
             rt_button(&brick, i, (u8)(buttons.state & bit));
@@ -156,14 +158,11 @@ static __attribute__((noinline)) void buttons_changed(u8 pins)
  * thousand times a second: the buttons' work, rarely needed, is a call of its own. */
 static inline void millisecond(void)
 {
-    u8 pins;
-
     if (drv_ad_seen != drv_ad_done)
         feed_samples();
     /* The same pins as last time, and no change being timed: the debounced state is what they show. */
-    pins = BUTTON_PINS();
-    if (pins != button_pins || buttons.cand)
-        buttons_changed(pins);
+    if (BUTTON_PINS() != button_pins || buttons.cand)
+        buttons_changed();
     rt_tick(&brick);
 }
 
