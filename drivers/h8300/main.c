@@ -151,7 +151,7 @@ static __attribute__((noinline)) void buttons_changed(void)
     changed = hw_debounce(&buttons, buttons_now(), drv_ms_ticks); /* the pins read just now */
     for (i = 0, bit = 1; i < HW_BUTTONS; i++, bit <<= 1)
         if (changed & bit)
-            rt_button(&brick, i, (u8)(buttons.state & bit));
+            rt_button(&brick, i, (u8)(buttons.state & bit)); /* non-zero: down */
 }
 
 /* One millisecond of the runtime: the samples, the buttons, then the clock. Inline in the main loop, which runs it a
