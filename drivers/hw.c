@@ -18,14 +18,18 @@ void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
     if (level > 7)
         level = 7;
     mode &= 3;
-    bits = (u8)(mode * weight[port]); /* a byte multiply is one instruction, a shift by a variable a loop */
-    keep = (u8)~(3 * weight[port]);
     /* A brake shorts the motor: holding is all it does, so it is never pulsed. One phase for all outputs, so that a
      * new level takes over at the next millisecond without restarting a frame. */
     pattern = mode == HAL_MOTOR_BRAKE ? 0xFF : hw_pwm_pattern[level];
+    bits = weight[port];
+    keep = (u8)~(3 * bits);
+    bits = (u8)(mode * bits); /* a byte multiply is one instruction, a shift by a variable a loop */
     do {
-        *latch = (u8)((*latch & keep) | (pattern & 1 ? bits : 0));
-        latch++;
+        u8 v = (u8)(*latch & keep);
+
+        if (pattern & 1)
+            v |= bits;
+        *latch++ = v;
         pattern >>= 1;
     } while (--n);
 }
@@ -37,9 +41,14 @@ void hw_motor_set(struct hw_motors *m, u8 port, u8 mode, u8 level)
  */
 u16 hw_battery_mv(u16 raw10)
 {
+    u16 x4, x28;
+
     if (raw10 > 1023)
         raw10 = 1023;
-    return (u16)(raw10 * 28u + rcx_divu8((u16)(raw10 * 38u + (raw10 >> 1)), 195));
+    /* The products by shifts and adds: gcc would call its 16-bit multiply helper for each. */
+    x4 = (u16)(raw10 << 2);
+    x28 = (u16)((x4 << 3) - x4);                                 /* raw × 32 - raw × 4 */
+    return (u16)(x28 + rcx_divu8((u16)(x28 + ((x4 + raw10) << 1) + (raw10 >> 1)), 195)); /* raw × (28 + 10) */
 }
 
 /*
@@ -61,20 +70,25 @@ static const u16 tone_clock[6][3] = {
 u8 hw_tone(u16 hz, struct hw_tone *t)
 {
     const u16 *c = tone_clock[0];
-    u8 i = 0;
-    u16 lo;
+    u8 i = 2 * 0x09; /* clock i counted from 0x12: TCR 09 + i / 2 is then i / 2 */
+    u16 lo, hi;
 
-    if (hz < 31 || hz > 20000)
-        return 0; /* the ROM's play-tone range; outside it a rest */
-    while (hz < *c) {
+    if ((u16)(hz - 31) > 20000 - 31)
+        return 0; /* the ROM's play-tone range (31-20 000 Hz); outside it a rest */
+    for (;;) { /* not while (hz < *c): gcc would then load the first lowest tone twice */
+        if (hz >= *c)
+            break;
         c += 3;
         i++;
     }
-    /* TCORA + 1 = clock / (2 hz), rounded: (clock + hz) / (2 hz), a dividend of up to 23 bits */
-    lo = (u16)(c[2] + hz);
-    t->tcora = (u8)(rcx_udiv32_16(lo, (u16)(2 * hz), (u16)(c[1] + (lo < hz))) - 1);
-    t->tcr = (u8)(0x09 + (i >> 1)); /* 08 = clear on compare match A, plus the clock select */
+    t->tcr = (u8)(i >> 1); /* 08 = clear on compare match A, plus the clock select */
     t->icks0 = (u8)(~i & 1);
+    /* TCORA + 1 = clock / (2 hz), rounded: (clock + hz) / (2 hz), a dividend of up to 23 bits */
+    hi = c[1];
+    lo = (u16)(c[2] + hz);
+    if (lo < hz)
+        hi++;
+    t->tcora = (u8)(rcx_udiv32_16(lo, (u16)(hz + hz), hi) - 1);
     return 1;
 }
 
@@ -129,40 +143,20 @@ u8 hw_debounce(struct hw_debounce *d, u8 raw, u8 now)
     return diff;
 }
 
-/*
- * PCF8566 commands (§3.6): MODE SET 48 = enabled, 1:4 multiplex, 1/3 bias (40 = disabled); DEVICE SELECT E0 =
- * sub-address 0; LOAD DATA POINTER 2i = image byte i. Bit 7 of a command means another command follows; the last
- * one has it clear and display bytes follow, the data pointer advancing by itself. Every update sends the mode and
- * the whole image (0.5 ms): the display engine calls only when something changed, and a controller that lost its
- * state for any reason is set right by the next update.
- */
-#define LCD_ADDRESS 0x7C
-#define LCD_MODE_ON 0x48
-#define LCD_MODE_OFF 0x40
-#define LCD_SELECT 0x60
-#define LCD_MORE 0x80
-
+/* Every update sends the mode and the whole image (0.5 ms): the display engine calls only when something changed,
+ * and a controller that lost its state for any reason is set right by the next update. */
 u8 hw_lcd_on_frame(const u8 *image, u8 *frame)
 {
-    static const u8 head[4] = { LCD_ADDRESS, LCD_MORE | LCD_MODE_ON, LCD_MORE | LCD_SELECT, 0 };
+    static const u8 head[4] = { HW_LCD_ADDRESS, HW_LCD_MORE | HW_LCD_MODE_ON, HW_LCD_MORE | HW_LCD_SELECT, 0 };
     const u8 *s = head;
-    u8 n = 4;
+    u8 n = 4 + HW_LCD_BYTES;
 
-    do
+    do { /* one loop, its source switched to the image once the head is copied */
         *frame++ = *s++;
-    while (--n);
-    n = HW_LCD_BYTES;
-    do
-        *frame++ = *image++;
-    while (--n);
+        if (n == HW_LCD_BYTES + 1)
+            s = image;
+    } while (--n);
     return 4 + HW_LCD_BYTES;
-}
-
-u8 hw_lcd_off_frame(u8 *frame)
-{
-    frame[0] = LCD_ADDRESS;
-    frame[1] = LCD_MODE_OFF;
-    return 2;
 }
 
 /* When the ring is full the newest byte stays and is marked bad: the IR layer then drops the packet it was in. */

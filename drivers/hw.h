@@ -62,8 +62,22 @@ u8 hw_debounce(struct hw_debounce *d, u8 raw, u8 now);
 /* LCD (§3.6): PCF8566 at bus address 7C. A frame is the byte sequence between START and STOP. */
 #define HW_LCD_BYTES 9
 #define HW_LCD_FRAME_MAX (4 + HW_LCD_BYTES)
+/* PCF8566 commands (§3.6): MODE SET 48 = enabled, 1:4 multiplex, 1/3 bias (40 = disabled); DEVICE SELECT E0 =
+ * sub-address 0; LOAD DATA POINTER 2i = image byte i. Bit 7 of a command means another command follows; the last
+ * one has it clear and display bytes follow, the data pointer advancing by itself. */
+#define HW_LCD_ADDRESS 0x7C
+#define HW_LCD_MODE_ON 0x48
+#define HW_LCD_MODE_OFF 0x40
+#define HW_LCD_SELECT 0x60
+#define HW_LCD_MORE 0x80
 u8 hw_lcd_on_frame(const u8 *image, u8 *frame); /* enable, then the whole image */
-u8 hw_lcd_off_frame(u8 *frame);                  /* display off (standby) */
+/* Display off (standby). Inline: its one caller on the brick stores two bytes for less than a call costs. */
+static inline u8 hw_lcd_off_frame(u8 *frame)
+{
+    frame[0] = HW_LCD_ADDRESS;
+    frame[1] = HW_LCD_MODE_OFF;
+    return 2;
+}
 void hw_lcd_send(const u8 *frame, u8 n); /* lcdbus.c: START, the bytes, STOP; the bus must idle with SCL, SDA high */
 
 /* IR receive ring (§3.8): filled by the receive interrupts, drained by the main loop. */

@@ -24,7 +24,7 @@ extern volatile u8 drv_woken RCX_EIGHT;    /* set by an interrupt that left the 
                                               stored, a byte received (the main loop clears it) */
 void drv_tick_start(u8 irq);        /* FRT: 1 ms period; with irq, the tick interrupt and the A/D cycle run; the
                                      * buttons' present state is taken as the debounced one, without edges */
-void drv_wait_ms(u8 ms);            /* busy wait on the FRT, interrupts masked or not */
+void drv_wait_ms(u8 ms);            /* busy wait on the FRT, interrupts masked or not; ms at least 1 */
 
 /* sci.c: the IR link. */
 void sci_start(u8 mode);            /* SCI and carrier for hal_ir_send's mode bits, receiver on */
@@ -33,7 +33,6 @@ void sci_service(void);             /* main loop: back to the default settings a
 void sci_drain(struct rcx_brick *k); /* main loop: received bytes to the runtime */
 extern struct hw_rx drv_rx;          /* the receive ring */
 extern u8 drv_sci_mode RCX_EIGHT;    /* the mode the SCI and carrier are set to */
-#define sci_waiting() (drv_rx.head != drv_rx.tail) /* sci_drain has bytes to deliver */
 void rcx_sci_isr(void);             /* byte received (with or without error), transmit data empty, sent */
 
 /* hal.c: the other outputs. */

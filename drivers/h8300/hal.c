@@ -49,13 +49,15 @@ RCX_HIGH_CODE void hal_sensor_power(struct rcx *b, u8 input, u8 on)
 void hal_sound(struct rcx *b, u16 hz)
 {
     static struct hw_tone t RCX_EIGHT;
+    u8 ok;
 
     (void)b;
     if (hz == tone_hz)
         return; /* the same tone again: restarting the timer would only add a click */
     tone_hz = hz;
+    ok = hw_tone(hz, &t); /* before the timer is stopped: nothing kept across the call */
     TMR0_TCR = 0;
-    if (!hw_tone(hz, &t)) {
+    if (!ok) {
         p6ddr_set((u8)(p6ddr & ~P6_SPEAKER)); /* as the ROM leaves a silent speaker: pin released */
         return;
     }
@@ -102,8 +104,7 @@ static void outputs_off(void)
     MOTOR_LATCH = 0;
     sci_stop();
     TMR0_TCR = 0;
-    TMR0_TCSR = 0;
-    tone_hz = 0;
+    TMR0_TCSR = 0;                /* tone_hz: drv_outputs_on clears it on waking */
     P6DR = P6_SCL | P6_SDA;       /* sensors, carrier and P6.3 low; LCD bus idle */
     p6ddr_set((u8)(p6ddr & ~(P6_SPEAKER | P6_AWAKE)));
     hw_lcd_send(lcd_frame, hw_lcd_off_frame(lcd_frame)); /* the image from byte 4 on stays */
@@ -203,9 +204,15 @@ RCX_HIGH_CODE void hal_enter_rom(struct rcx *b)
     (void)b;
     h8_irq_disable();
     MOTOR_LATCH = 0;
-    while ((a = *p++) != 0) {
-        volatile u8 *r = (volatile u8 *)(unsigned)((a < 0x90 ? 0xFD00 : 0xFF00) | a);
+    for (;;) { /* not while ((a = *p++) != 0): gcc would then read the first byte twice */
+        volatile u8 *r;
 
+        a = *p++;
+        if (!a)
+            break;
+        r = (volatile u8 *)(unsigned)(0xFF00 | a);
+        if (a < 0x90)
+            r -= 0x200; /* FDxx */
         n = *p++;
         do {
             (void)*r;

@@ -35,10 +35,11 @@ u8 drv_sensor_power RCX_EIGHT;
 /* The main loop's own: on-chip too, external RAM is left to the program memory. */
 static struct hw_debounce buttons RCX_EIGHT;
 static u8 button_pins RCX_EIGHT;                 /* the button bits of P4 and P7 when last looked at */
-static u8 battery_count RCX_EIGHT;
+static u8 battery_count RCX_EIGHT;              /* samples in battery_sum, in steps of 0x20: the eighth wraps to 0 */
 static u16 battery_sum RCX_ONCHIP;
 
-int main(void);
+/* Never returns (crt0.s): nothing of its caller's to keep, so no registers saved (OS_Task). */
+int main(void) __attribute__((OS_Task));
 
 /* What irq.s takes for granted. */
 RCX_STATIC_ASSERT(slots_in_a_byte, DRV_AD_SLOTS * DRV_AD_SLOT == 0x20 && DRV_AD_SLOT == 8);
@@ -48,13 +49,20 @@ RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound
 
 #define BUTTON_PINS() ((u8)((P4DR & 0x06) | (P7PIN & 0xC0))) /* On-Off, Run; View, Prgm (hw_buttons) */
 
+/* The buttons as their pins show them now, the pins noted for the main loop's next look (millisecond). */
+static __attribute__((noinline)) u8 buttons_now(void)
+{
+    u8 pins = BUTTON_PINS();
+
+    button_pins = pins;
+    return hw_buttons(pins, pins);
+}
+
 /* FRT at 500 kHz, cleared on compare match A at 499: 1.000 ms per period (rcx-hardware.md §6). The buttons'
- * present state becomes the debounced one, without edges. */
+ * present state becomes the debounced one, without edges: last, with the interrupts still masked by both callers
+ * (and the tick interrupt leaves the buttons alone), so that `irq` is not kept across a call. */
 RCX_HIGH_CODE void drv_tick_start(u8 irq)
 {
-    button_pins = BUTTON_PINS();
-    buttons.state = hw_buttons(button_pins, button_pins);
-    buttons.cand = 0;
     FRT_TIER = 0;
     FRT_TCR = FRT_TCR_CLK_DIV32;
     H8_BCLR(4, 0x97);               /* TOCR.OCRS (FRT_TOCR_OCRS): FF94 addresses OCRA */
@@ -64,17 +72,18 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
     FRT_TCSR = FRT_TCSR_CCLRA;
     if (irq)
         FRT_TIER = FRT_TIER_OCIAE;
+    buttons.cand = 0;
+    buttons.state = buttons_now();
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
 RCX_HIGH_CODE void drv_wait_ms(u8 ms)
 {
-    while (ms) {
-        if (FRT_TCSR & FRT_TCSR_OCFA) {
-            H8_BCLR(3, 0x91); /* TCSR.OCFA */
-            ms--;
-        }
-    }
+    do {
+        while (!(FRT_TCSR & FRT_TCSR_OCFA))
+            ;
+        H8_BCLR(3, 0x91); /* TCSR.OCFA */
+    } while (--ms);
 }
 
 /* hw_ad_raw10 as the H8/300 does it in 8 instructions: gcc makes a 16-bit shift by 6 a loop of 24. */
@@ -95,22 +104,24 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
-    u8 i, seen;
+    u8 i, seen, done;
 
-    while ((seen = drv_ad_seen) != drv_ad_done) {
+    while ((seen = drv_ad_seen) != (done = drv_ad_done)) {
         const volatile u16 *slot;
 
-        if ((u8)(drv_ad_done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any */
-            seen = (u8)(drv_ad_done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* moment: skipped */
+        if ((u8)(done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any moment: */
+            seen = (u8)(done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* skipped */
         slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
+        /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
+        p = s + 3;
+        i = 3;
         h8_irq_disable();
-        s[0] = slot[0];
-        s[1] = slot[1];
-        s[2] = slot[2];
+        do
+            *--p = *slot++;
+        while (--i);
         h8_irq_enable();
-        p = &s[hw_ad_channel(0)];
         for (i = 0; i < 3; i++)
-            rt_sensor_sample(&brick, i, ad_raw10(*p--));
+            rt_sensor_sample(&brick, i, ad_raw10(*p++));
         rt_sensors_at_rest(&brick);
         /* Only now: the interrupt compares a scan with this one only once it has been fed. */
         drv_ad_seen = (u8)(seen + DRV_AD_SLOT);
@@ -125,38 +136,33 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
 static __attribute__((noinline)) void battery_sample(void)
 {
     battery_sum += ad_raw10(AD_ADDR(HW_AD_BATTERY));
-    if (++battery_count == 8) {
+    battery_count = (u8)(battery_count + 0x20);
+    if (!battery_count) {
         rt_battery(&brick, hw_battery_mv(battery_sum >> 3));
         battery_sum = 0;
-        battery_count = 0;
     }
 }
 
 /* The buttons' pins changed, or a change is being timed: debounced, and each new state to the runtime. */
-static __attribute__((noinline)) void buttons_changed(u8 pins)
+static __attribute__((noinline)) void buttons_changed(void)
 {
-    u8 changed, state, i;
+    u8 changed, i, bit;
 
-    button_pins = pins;
-    changed = hw_debounce(&buttons, hw_buttons(pins, pins), drv_ms_ticks); /* the pins were read just now */
-    state = buttons.state;
-    for (i = 0; changed; i++, changed >>= 1, state >>= 1)
-        if (changed & 1)
-            rt_button(&brick, i, (u8)(state & 1));
+    changed = hw_debounce(&buttons, buttons_now(), drv_ms_ticks); /* the pins read just now */
+    for (i = 0, bit = 1; i < HW_BUTTONS; i++, bit <<= 1)
+        if (changed & bit)
+            rt_button(&brick, i, (u8)(buttons.state & bit)); /* non-zero: down */
 }
 
 /* One millisecond of the runtime: the samples, the buttons, then the clock. Inline in the main loop, which runs it a
  * thousand times a second: the buttons' work, rarely needed, is a call of its own. */
 static inline void millisecond(void)
 {
-    u8 pins;
-
     if (drv_ad_seen != drv_ad_done)
         feed_samples();
     /* The same pins as last time, and no change being timed: the debounced state is what they show. */
-    pins = BUTTON_PINS();
-    if (pins != button_pins || buttons.cand)
-        buttons_changed(pins);
+    if (BUTTON_PINS() != button_pins || buttons.cand)
+        buttons_changed();
     rt_tick(&brick);
 }
 
@@ -164,7 +170,11 @@ static inline void millisecond(void)
  * asks twice. */
 static __attribute__((noinline)) u8 quiet_ms(void)
 {
-    return (u8)(buttons.cand | drv_sci_mode) ? 0 : rt_quiet(&brick);
+    u8 quiet = rt_quiet(&brick);
+
+    if (buttons.cand | drv_sci_mode)
+        quiet = 0;
+    return quiet;
 }
 
 int main(void)
@@ -173,7 +183,8 @@ int main(void)
 
     /* No code: the arena's size as an absolute symbol, for drivers/size.sh and the free-memory check. */
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
-    H8_SYSCR &= (u8)~H8_SYSCR_SSBY; /* the ROM leaves it set: SLEEP in the idle loop must be a light sleep */
+    H8_BCLR(7, 0xc4);               /* SYSCR.SSBY (H8_SYSCR_SSBY): the ROM leaves it set, and SLEEP in the idle loop
+                                     * must be a light sleep */
     P4DR = 0x01;                    /* IR short range until the IR layer says otherwise */
     /* No code: where the tick interrupt (irq.s) sets rcx.yield. */
     __asm__ __volatile__(".global\t_drv_yield\n\t.set\t_drv_yield, _brick+%c0" ::"i"(offsetof(struct rcx_brick, vm.yield)));
@@ -194,10 +205,8 @@ int main(void)
 
     for (;;) {
         drv_woken = 0; /* what comes in from now on wakes the quiet milliseconds' sleep below */
-        if (sci_waiting())
-            sci_drain(&brick);
-        if (drv_sci_mode)
-            sci_service();
+        sci_drain(&brick); /* each returns at once when it has nothing to do */
+        sci_service();
         if ((u8)(drv_ms_ticks - seen) > TICKS_BACKLOG)
             seen = (u8)(drv_ms_ticks - TICKS_PER_PASS);
         /* Quiet milliseconds slept through or run through: all but the last counted at once. */

@@ -15,6 +15,9 @@
 struct hw_rx drv_rx RCX_ONCHIP;
 static volatile u8 tx_head RCX_EIGHT, tx_tail RCX_EIGHT, tx_active RCX_EIGHT;
 static volatile u8 tx_buf[TX_SIZE] RCX_ONCHIP; /* volatile: filled before the head moves, read by the interrupt */
+/* The slot of free-running index i. A u8 offset added to the array: then gcc addresses it as @(tx_buf, reg), 4 bytes
+ * less than for tx_buf[i & (TX_SIZE - 1)]. */
+#define TX_SLOT(i) (*(tx_buf + (u8)((i) & (TX_SIZE - 1))))
 u8 drv_sci_mode RCX_EIGHT;
 
 /*
@@ -30,7 +33,7 @@ void rcx_sci_isr(void)
     if ((u8)(ssr << 1) >= 0x10) { /* any of RDRF, ORER, FER and PER: bits 6-3, shifted up to 7-4 */
         t = SCI_RDR;
         SCI_SSR &= (u8)~(SCI_SSR_ERRORS | SCI_SSR_RDRF);
-        hw_rx_put(&drv_rx, t, (u8)((ssr & SCI_SSR_ERRORS) != 0));
+        hw_rx_put(&drv_rx, t, (u8)(ssr & SCI_SSR_ERRORS)); /* any error bit: non-zero */
         drv_woken = 1;
         drv_yield = 1;
         return;
@@ -45,7 +48,7 @@ void rcx_sci_isr(void)
         SCI_SCR = (u8)((SCI_SCR & ~SCI_SCR_TIE) | SCI_SCR_TEIE);
         return;
     }
-    SCI_TDR = tx_buf[t & (TX_SIZE - 1)];
+    SCI_TDR = TX_SLOT(t);
     tx_tail = (u8)(t + 1);
     tx_active = 1; /* set here too, so an end-of-transmission interrupt left over from before cannot clear it */
     H8_BCLR(7, 0xdc); /* SSR.TDRE: read as 1 and written 0 */
@@ -83,7 +86,7 @@ void sci_start(u8 mode)
     drv_sci_mode = mode;
 }
 
-void sci_stop(void)
+RCX_HIGH_CODE void sci_stop(void)
 {
     SCI_SCR = 0;
     TMR1_TCR = 0;
@@ -95,7 +98,7 @@ void sci_stop(void)
 u8 hal_ir_busy(struct rcx *b)
 {
     (void)b;
-    return (u8)(tx_head != tx_tail || tx_active);
+    return (u8)((u8)(tx_head ^ tx_tail) | tx_active); /* non-zero: busy (hal.h) */
 }
 
 void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
@@ -112,13 +115,13 @@ void hal_ir_send(struct rcx *b, const u8 *data, u8 len, u8 mode)
 
         while ((u8)(h - tx_tail) >= TX_SIZE)
             ; /* the transmit interrupt makes room */
-        tx_buf[h & (TX_SIZE - 1)] = *data++;
+        TX_SLOT(h) = *data++;
         tx_head = (u8)(h + 1);
         H8_BSET(7, 0xda); /* SCR.TIE: one instruction, as the handlers change SCR too */
     }
 }
 
-void hal_ir_range(struct rcx *b, u8 far)
+RCX_HIGH_CODE void hal_ir_range(struct rcx *b, u8 far)
 {
     (void)b;
     if (far)
@@ -128,7 +131,7 @@ void hal_ir_range(struct rcx *b, u8 far)
 }
 
 /* Another mode is for one transmission (a program's serial packet); the host talks at the default settings. */
-void sci_service(void)
+RCX_HIGH_CODE void sci_service(void)
 {
     if (drv_sci_mode && !hal_ir_busy(0))
         sci_start(0);
@@ -140,5 +143,5 @@ void sci_drain(struct rcx_brick *k)
     u8 got;
 
     while ((got = hw_rx_get(&drv_rx, &byte)) != 0)
-        rt_ir_byte(k, byte, (u8)(got == 2));
+        rt_ir_byte(k, byte, (u8)(got - 1)); /* 2: with an error */
 }
