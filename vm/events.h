@@ -60,7 +60,6 @@ struct rcx_event {
             u16 raw_sum;    /* of the raw samples (inputs only), and in its top 3 bits how many */
             u8 rem;
             u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
-            u8 unused[2];   /* spare: struct rcx keeps its layout (RF_ARENA, drivers/h8300/runfast.h) */
         } cal;
     } u;
 };

@@ -64,14 +64,15 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
     /* Swan's (swan-target.md 4) */
     case ARITH_COMP:          return (s16)~v;
     case ARITH_XOR:           return (s16)(a ^ v);
-    case ARITH_SHR:
-        v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
-        /* fall through */
     default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
         m = a;
         a = 1;
+        goto shift;
+    case ARITH_SHR:
+        v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
         /* fall through */
     case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
+    shift:
         n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
         if (n > 16)
             n = 16;

@@ -79,6 +79,7 @@ struct rcx {
     volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
     u8 waiting;     /* WAIT_10MS/WAIT_MS set when a task starts a Wait/WaitMS, cleared once none waits */
     u8 swan[RCX_SWAN_N(RCX_PROGRAMS)]; /* slot's code uses a Swan opcode or source 43/44 (decided when a download completes) */
+    u8 message;     /* source 15 (here, in the byte the array leaves before the words) */
     s16 global[RCX_ALL_GLOBALS]; /* 0-31 RCX 2.0's globals, then task t's locals at 32 + 16 t (Swan's overlay) */
     struct rcx_task task[RCX_TASKS];
 
@@ -95,13 +96,11 @@ struct rcx {
 
     /* Values delivered by the runtime, read by sources. */
     u16 battery_mv; /* source 34 */
-    u8 message;     /* source 15 */
     s16 msg_param;  /* source 15 index 1: Swan's message parameter */
     s16 swan_power[RCX_SWAN_N(4)][RCX_MOTORS]; /* sources 5, 16, 32, 7 as last written (sources.c) */
     s16 system[RCX_SWAN_N(RCX_SYSTEM)];  /* source 24 as written: read back for the settings OpenRCX does not have */
 
     struct rcx_sensor sensor[RCX_SENSORS];
-    u8 sensors_rest;   /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */
     struct rcx_event event[RCX_EVENTS];
     struct rcx_outputs out;
     struct rcx_sound sound;
@@ -115,6 +114,7 @@ struct rcx {
     u8 turn_off;           /* PBTurnOff accepted */
     u8 tx_range;           /* PbTXPower: 0 short, 1 long */
     u8 boot_mode;          /* GoIntoBootMode accepted */
+    u8 sensors_rest;       /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */
 
     void *port;     /* the hardware port's own data for this brick (host simulator); the machine never uses it */
 

@@ -201,6 +201,7 @@ static void active_inputs_are_read_just_after_their_power_is_removed(void **stat
 {
     struct h8m_sensor seen[3];
     uint8_t input, reply[3];
+    unsigned i;
     (void)state;
     for (input = 0; input < 3; input++) {
         uint8_t type[] = { 0x32, input, 3 }; /* light */
@@ -211,6 +212,11 @@ static void active_inputs_are_read_just_after_their_power_is_removed(void **stat
     memset(m.sensor, 0, sizeof m.sensor);
     assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK), 0);
     memcpy(seen, m.sensor, sizeof seen);
+    /* Powered between the readings: the run above stopped at an arbitrary instant, maybe inside an input's
+     * unpowered window (UNPOWERED_MAX at most, checked below), so the power is looked at over the next 40 µs. */
+    for (i = 0; i < 40 && (m.sensor_power & 7) != 7; i++)
+        assert_int_equal(h8m_run(&m, m.h.states + H8M_CLOCK / 1000000), 0);
+    assert_int_equal(m.sensor_power & 7, 7);
     for (input = 0; input < 3; input++) {
         const struct h8m_sensor *s = &seen[2 - input];
         uint8_t raw[] = { 0x12, 12, input };
@@ -222,7 +228,6 @@ static void active_inputs_are_read_just_after_their_power_is_removed(void **stat
         assert_int_equal(s->missed, 0);
         assert_true(s->delay_max > 0 && s->delay_max <= UNPOWERED_READ_MAX);
         assert_true(s->off_max > 0 && s->off_max <= UNPOWERED_MAX);
-        assert_true(m.sensor_power >> (2 - input) & 1); /* powered between the readings */
         assert_int_equal(h8m_transact(&m, raw, sizeof raw, reply, 3, NULL), 0);
         assert_int_equal(reply[1] | reply[2] << 8, 300 + 100 * input);
     }
