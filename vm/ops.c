@@ -21,7 +21,7 @@ static
 s16 ops_arith(s16 a, s16 v, u8 kind)
 {
 #if RCX_SWAN
-    u16 n;
+    u8 n;
     s16 m = 0;                                   /* the variable, while a is a bit's mask */
 #endif
 
@@ -73,11 +73,14 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
         /* fall through */
     case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
     shift:
-        n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
-        if (n > 16)
-            n = 16;
-        for (; n; n--)
-            a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
+        for (n = 16; v && n; n--)                /* |v| steps, 16 at most */
+            if (v < 0) {
+                a = (s16)(a >> 1);
+                v++;
+            } else {
+                a = (s16)(u16)((u16)a << 1);
+                v--;
+            }
         if (kind < ARITH_BSET)
             return a;
         return (s16)(kind == ARITH_BSET ? m | a : m & ~a);
