@@ -300,12 +300,13 @@ OP(op_set_source)
 OP(op_priority) { (void)b; t->priority = ins[1]; }
 /* Wait, and Swan's WaitMS (vm/swan.c): a task that waits costs nothing until vm_tick() wakes it. Waits run on the
  * 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
-RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
+RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2 && RCX_SW_WAIT_MS == (RCX_OP_WAIT | 4)
+                              && !(RCX_OP_WAIT & 4));
 void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     s16 value = ops_source(b, t, ins);
 #if RCX_SWAN
-    u8 ms = ins[0] == RCX_SW_WAIT_MS;
+    u8 ms = (u8)((ins[0] >> 2) & 1); /* WaitMS 0x47, Wait 0x43 */
 #endif
 
     if (value <= 0)
