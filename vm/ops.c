@@ -294,7 +294,9 @@ OP(op_calibrate)
 OP(op_set_source)
 {
     /* Source numbers use bits 0-5 of their byte (spec p. 86). */
-    source_set(b, t, (u8)(ins[1] & 0x3F), ins[2], source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4)));
+    s16 value = source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4));
+
+    source_set(b, t, (u8)(ins[1] & 0x3F), ins[2], value);
 }
 /* SetPriority and SendPBMessage are program-only (vm_direct() runs none): t is a task. */
 OP(op_priority) { (void)b; t->priority = ins[1]; }
