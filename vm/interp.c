@@ -98,9 +98,11 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     if ((u16)(size - pc) <= len)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
+    if (!(flags & (RCX_PROGRAM << 3))) /* availability: bits 3-4 */
+        return;                        /* unknown and direct-only byte codes are skipped by their length (spec p. 5) */
 
     i = sizeof control;                /* the byte codes shared with direct commands are none of these */
-    if (!((flags ^ (RCX_PROGRAM << 3)) & (3 << 3))) /* program-only: bits 3-4 of the flags, in place */
+    if (!(flags & (RCX_DIRECT << 3)))  /* program-only */
         for (i = 0; i < sizeof control && control[i] != op; i++)
             ;
     if (i < C_END_OF_SUB) {
@@ -177,9 +179,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         end_of_code(b, t);
         break;
     default:
-        if (flags & (RCX_PROGRAM << 3)) /* availability: bits 3-4 */
-            ops_exec(b, t, ins);
-        /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
+        ops_exec(b, t, ins);
         break;
     }
 
