@@ -115,10 +115,9 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         pc = (u16)(pc + field);        /* from here: the offset the distance counts from */
         if (i & 1)
             d |= (u16)p[1] << 8;
-        if (i >= C_JUMP) {             /* sign-magnitude; the short form has nothing above bit 7 */
-            d = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
-            if (p[0] & 0x80)
-                d = (u16)(0u - d);
+        if (i >= C_JUMP) {             /* sign-magnitude (bit 7 of the first byte); the short form has nothing above */
+            u16 m = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
+            d = d & 0x80 ? (u16)(0u - m) : m;
         } else if (i == C_CHECK_LOOP + 1 && (d & 0x8000)) {
             d = 0x8000u;
         }
