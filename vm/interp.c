@@ -162,15 +162,12 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     case C_CHECK_DO:
     case C_CHECK_DO + 1: {
         s16 a;
-        u8 holds = 4;
+        u8 holds, rel;
         value = source_get(b, t, ins[2] & 0x3F, ins[5]);
         a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
-        if (a < value)
-            holds = 1;
-        else if (a == value)
-            holds = 2;
-        op = ins[1];                   /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
-        jump = !(relation[(u8)((u8)(op << 2) | (u8)(op >> 6)) & 3] & holds);
+        holds = a < value ? 1 : a == value ? 2 : 4;
+        rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
+        jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
         break;
     }
     case C_END_OF_SUB:
