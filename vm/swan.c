@@ -55,8 +55,8 @@ static void stack(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
 static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 {
-    u8 m = ins[1];
-    s16 v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+    u8 m;
+    s16 v;
 
     if (kind >= SW_SEND_PARAM) {
         m = (u8)ops_source8(b, t, ins);
@@ -65,6 +65,9 @@ static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
             remote_send_message_param(b, m, v);
             return;
         }
+    } else {
+        m = ins[1];
+        v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
     }
     b->msg_param = v;                  /* first, so that the events the message raises find it */
     ops_set_message(b, m);
