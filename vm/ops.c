@@ -25,45 +25,10 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
     s16 m = 0;                                   /* the variable, while a is a bit's mask */
 #endif
 
-    switch (kind) {
-    case ARITH_SET: return v;
+    switch (kind) {                              /* (the long cases first: the others reach the end by a short
+                                                  * branch) */
 #if RCX_SWAN
-    case ARITH_NEG:
-#endif
-    negate:
-        a = 0;                                   /* -v = 0 - v */
-        /* fall through */
-    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
-    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
-    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
-#if RCX_SWAN
-    case ARITH_MOD:
-#endif
-    case ARITH_DIV:
-        if (v == 0)
-            return a;                            /* division by zero leaves the variable */
-        if (v == -1) {                           /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
-            if (IS_MOD(kind))
-                return 0;
-            v = a;
-            goto negate;
-        }
-        return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
-                                                           * of the dividend */
-    case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
-    case ARITH_ABS:
-        if (v < 0) {
-            v = (s16)(u16)(0u - (u16)v);
-            if (v < 0)
-                v = 32767;                       /* abs(-32768) */
-        }
-        return v;
-    case ARITH_AND: return (s16)(a & v);
-#if RCX_SWAN
-    case ARITH_OR:   return (s16)(a | v);
     /* Swan's (swan-target.md 4) */
-    case ARITH_COMP:          return (s16)~v;
-    case ARITH_XOR:           return (s16)(a ^ v);
     default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
         m = a;
         a = 1;
@@ -84,8 +49,44 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
         if (kind < ARITH_BSET)
             return a;
         return (s16)(kind == ARITH_BSET ? m | a : m & ~a);
+    case ARITH_MOD:
+#endif
+    case ARITH_DIV:
+        if (v == 0)
+            return a;                            /* division by zero leaves the variable */
+        if (v == -1) {                           /* -32768 / -1 = -32768 and -32768 % -1 = 0, without the trap */
+            if (IS_MOD(kind))
+                return 0;
+            v = a;
+            goto negate;
+        }
+        return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
+                                                           * of the dividend */
+    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
+    case ARITH_SET: return v;
+#if RCX_SWAN
+    case ARITH_NEG:
+#endif
+    negate:
+        a = 0;                                   /* -v = 0 - v */
+        /* fall through */
+    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
+    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
+    case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+    case ARITH_ABS:
+        if (v < 0) {
+            v = (s16)(u16)(0u - (u16)v);
+            if (v < 0)
+                v = 32767;                       /* abs(-32768) */
+        }
+        return v;
+    case ARITH_AND: return (s16)(a & v);
+#if RCX_SWAN
+    case ARITH_OR:   return (s16)(a | v);
+    case ARITH_COMP: return (s16)~v;
+    case ARITH_XOR:  return (s16)(a ^ v);
 #else
-    default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
+    default:         return (s16)(a | v);        /* RCX_OP_OR_VAR */
 #endif
     }
 }
