@@ -126,18 +126,18 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             to = OUTSIDE;
     }
 
-    switch (i) {
-    case C_JUMP:
-    case C_JUMP + 1:
-        jump = 1;
+    switch (i) {                       /* (the long cases first: the others end with a short branch) */
+    case C_CHECK_DO:
+    case C_CHECK_DO + 1: {
+        s16 a;
+        u8 holds, rel;
+        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
+        a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
+        holds = a < value ? 1 : a == value ? 2 : 4;
+        rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
+        jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
         break;
-    case C_DEC:
-    case C_DEC + 1:
-        if ((var = var_ref(b, t, ins[1])) != NULL) {
-            *var = (s16)(u16)((u16)*var - 1u);
-            jump = *var < 0;
-        }
-        break;
+    }
     case C_ENTER:
     case C_ENTER + 1:
     case C_ACCESS:
@@ -147,6 +147,13 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             access_enter(b, t, ins[1], to);
         else
             events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
+        break;
+    case C_DEC:
+    case C_DEC + 1:
+        if ((var = var_ref(b, t, ins[1])) != NULL) {
+            *var = (s16)(u16)((u16)*var - 1u);
+            jump = *var < 0;
+        }
         break;
     case C_CHECK_LOOP:
     case C_CHECK_LOOP + 1:
@@ -159,23 +166,16 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             t->loop[len - 1]--;
         }
         break;
-    case C_CHECK_DO:
-    case C_CHECK_DO + 1: {
-        s16 a;
-        u8 holds, rel;
-        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
-        a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
-        holds = a < value ? 1 : a == value ? 2 : 4;
-        rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
-        jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
-        break;
-    }
     case C_END_OF_SUB:
     end:
         end_of_code(b, t);
         break;
     default:
         ops_exec(b, t, ins);
+        break;
+    case C_JUMP:
+    case C_JUMP + 1:
+        jump = 1;
         break;
     }
 
