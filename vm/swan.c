@@ -96,14 +96,14 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
         *g = ops_arith(*g, v, ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET); /* 0x2B-0x2D: = */
         return;
     }
-    if (kind == SW_WAIT_MS)
-        ops_wait(b, t, ins);
-    else if (kind == SW_CLEAR_ALL)
-        clear_all(b, ins[1]);
-    else if (kind <= SW_POP)
-        stack(b, t, ins, kind);
-    else
+    if (kind >= SW_MSG_BYTE)
         message(b, t, ins, kind);
+    else if (kind >= SW_PUSH)
+        stack(b, t, ins, kind);
+    else if (kind == SW_WAIT_MS)
+        ops_wait(b, t, ins);
+    else
+        clear_all(b, ins[1]);
 }
 
 /*
