@@ -188,13 +188,14 @@ void ops_set_message(struct rcx *b, u8 m)
 OP(op_clear_message) { UNUSED_T; UNUSED_INS; ops_set_message(b, 0); }
 OP(op_message)
 {
+    u8 m = ins[1];
 #if RCX_SWAN
     if (!t) /* received: a plain message has parameter 0 (swan-target.md 4), one after a B3 that one's */
-        b->msg_param = remote_message_received(b, ins[1]);
+        b->msg_param = remote_message_received(b, m);
 #else
     UNUSED_T;
 #endif
-    ops_set_message(b, ins[1]);
+    ops_set_message(b, m);
 }
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
