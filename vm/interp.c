@@ -68,7 +68,8 @@ static
 #endif
 __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at)
 {
-    u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
+    u16 pc = t->pc, room = (u16)(at[1] - at[0] - pc), to = 0; /* room: bytes from the opcode to the end of the code;
+                                                                 * to: a distance's destination, OUTSIDE if beyond it */
     const u8 *ins;
 #if RCX_SWAN
     const struct rcx_swan_row *sw;
@@ -77,13 +78,13 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     s16 value;
     s16 *var;
 
-    if (pc >= size)                    /* the end of the code: as EndOfSub */
+    if ((s16)room <= 0)                /* the end of the code: as EndOfSub (offsets are below 0x8000) */
         goto end;
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
         len = rcx_swan_params(sw);
-        if ((u16)(size - pc) <= len)
+        if (room <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
         swan_exec(b, t, ins, sw);
@@ -95,7 +96,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
     if (!flags && len >= 6)
         len = (u8)(len - 6);
-    if ((u16)(size - pc) <= len)
+    if (room <= len)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
     if (!(flags & (RCX_PROGRAM << 3))) /* availability: bits 3-4 */
@@ -112,7 +113,6 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         u8 field = dist_at[i >> 1];
         const u8 *p = ins + field;
         u16 d = p[0];
-        pc = (u16)(pc + field);        /* from here: the offset the distance counts from */
         if (i & 1)
             d |= (u16)p[1] << 8;
         if (i >= C_JUMP) {             /* sign-magnitude (bit 7 of the first byte); the short form has nothing above */
@@ -121,8 +121,8 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         } else if (i == C_CHECK_LOOP + 1 && (d & 0x8000)) {
             d = 0x8000u;
         }
-        to = (u16)(pc + d);
-        if (to > size)
+        to = (u16)(pc + field + d);    /* from the offset the distance counts from */
+        if (to > (u16)(pc + room))     /* the code's size */
             to = OUTSIDE;
     }
 
