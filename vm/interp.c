@@ -126,7 +126,20 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             to = OUTSIDE;
     }
 
-    switch (i) {                       /* (the long cases first: the others end with a short branch) */
+    switch (i) {                       /* (in the order that lets most cases end with a short branch, as measured) */
+    case C_ENTER:
+    case C_ENTER + 1:
+    case C_ACCESS:
+        if ((s16)to < 0)
+            goto stop;
+        if (i == C_ACCESS)
+            access_enter(b, t, ins[1], to);
+        else
+            events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
+        break;
+    default:
+        ops_exec(b, t, ins);
+        break;
     case C_CHECK_DO:
     case C_CHECK_DO + 1: {
         s16 a;
@@ -138,23 +151,6 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
         break;
     }
-    case C_ENTER:
-    case C_ENTER + 1:
-    case C_ACCESS:
-        if ((s16)to < 0)
-            goto stop;
-        if (i == C_ACCESS)
-            access_enter(b, t, ins[1], to);
-        else
-            events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
-        break;
-    case C_DEC:
-    case C_DEC + 1:
-        if ((var = var_ref(b, t, ins[1])) != NULL) {
-            *var = (s16)(u16)((u16)*var - 1u);
-            jump = *var < 0;
-        }
-        break;
     case C_CHECK_LOOP:
     case C_CHECK_LOOP + 1:
         if ((len = t->loop_depth) == 0)
@@ -166,16 +162,20 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             t->loop[len - 1]--;
         }
         break;
+    case C_JUMP:
+    case C_JUMP + 1:
+        jump = 1;
+        break;
     case C_END_OF_SUB:
     end:
         end_of_code(b, t);
         break;
-    default:
-        ops_exec(b, t, ins);
-        break;
-    case C_JUMP:
-    case C_JUMP + 1:
-        jump = 1;
+    case C_DEC:
+    case C_DEC + 1:
+        if ((var = var_ref(b, t, ins[1])) != NULL) {
+            *var = (s16)(u16)((u16)*var - 1u);
+            jump = *var < 0;
+        }
         break;
     }
 
