@@ -98,12 +98,12 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
     }
     if (kind >= SW_MSG_BYTE)
         message(b, t, ins, kind);
+    else if (kind == SW_CLEAR_ALL)
+        clear_all(b, ins[1]);
     else if (kind >= SW_PUSH)
         stack(b, t, ins, kind);
-    else if (kind == SW_WAIT_MS)
-        ops_wait(b, t, ins);
     else
-        clear_all(b, ins[1]);
+        ops_wait(b, t, ins);           /* SW_WAIT_MS */
 }
 
 /*
