@@ -26,7 +26,7 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
 #endif
 
     switch (kind) {                              /* (the long cases first: the others reach the end by a short
-                                                  * branch) */
+                                                  * branch; the order measured) */
 #if RCX_SWAN
     /* Swan's (swan-target.md 4) */
     default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
@@ -73,6 +73,10 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
     case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
     case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
     case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+#if RCX_SWAN
+    case ARITH_OR:   return (s16)(a | v);
+#endif
+    case ARITH_AND: return (s16)(a & v);
     case ARITH_ABS:
         if (v < 0) {
             v = (s16)(u16)(0u - (u16)v);
@@ -80,9 +84,7 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
                 v = 32767;                       /* abs(-32768) */
         }
         return v;
-    case ARITH_AND: return (s16)(a & v);
 #if RCX_SWAN
-    case ARITH_OR:   return (s16)(a | v);
     case ARITH_COMP: return (s16)~v;
     case ARITH_XOR:  return (s16)(a ^ v);
 #else
