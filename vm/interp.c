@@ -102,10 +102,12 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     if (!(flags & (RCX_PROGRAM << 3))) /* availability: bits 3-4 */
         return;                        /* unknown and direct-only byte codes are skipped by their length (spec p. 5) */
 
-    i = sizeof control;                /* the byte codes shared with direct commands are none of these */
-    if (!(flags & (RCX_DIRECT << 3)))  /* program-only */
-        for (i = 0; i < sizeof control && control[i] != op; i++)
-            ;
+    if (flags & (RCX_DIRECT << 3)) {   /* shared with direct commands: none of the ones below */
+        ops_exec(b, t, ins);
+        return;
+    }
+    for (i = 0; i < sizeof control && control[i] != op; i++)
+        ;
     if (i < C_END_OF_SUB) {
         /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
          * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
