@@ -55,14 +55,13 @@ static void stack(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
 static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 {
-    u8 m;
-    s16 v;
+    s16 m, v;                          /* (the message: its low byte) */
 
     if (kind >= SW_SEND_PARAM) {
-        m = (u8)ops_source8(b, t, ins);
+        m = ops_source8(b, t, ins);
         v = ops_source(b, t, ins + 2);
         if (kind == SW_SEND_PARAM) {
-            remote_send_message_param(b, m, v);
+            remote_send_message_param(b, (u8)m, v);
             return;
         }
     } else {
@@ -70,7 +69,7 @@ static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
         v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
     }
     b->msg_param = v;                  /* first, so that the events the message raises find it */
-    ops_set_message(b, m);
+    ops_set_message(b, (u8)m);
 }
 
 void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
