@@ -91,7 +91,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         return;
     }
 #endif
-    op = (u8)(ins[0] & ~RCX_TOGGLE);
+    op = ins[0];                       /* (the toggle bit changes neither the row nor the length) */
     flags = rcx_opflags[rcx_op_index(op)];
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
     if (!flags && len >= 6)
@@ -106,6 +106,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         ops_exec(b, t, ins);
         return;
     }
+    op = (u8)(ins[0] & ~RCX_TOGGLE);   /* read again: fewer values kept up to here */
     for (i = 0; i < sizeof control && control[i] != op; i++)
         ;
     if (i < C_END_OF_SUB) {
