@@ -99,10 +99,10 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     if (room <= len)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
-    if (!(flags & (RCX_PROGRAM << 3))) /* availability: bits 3-4 */
+    flags &= RCX_PROGRAM << 3 | RCX_DIRECT << 3; /* availability (bits 3-4), compared as a number */
+    if (flags < (RCX_PROGRAM << 3))
         return;                        /* unknown and direct-only byte codes are skipped by their length (spec p. 5) */
-
-    if (flags & (RCX_DIRECT << 3)) {   /* shared with direct commands: none of the ones below */
+    if (flags != (RCX_PROGRAM << 3)) { /* shared with direct commands: none of the ones below */
         ops_exec(b, t, ins);
         return;
     }
