@@ -66,7 +66,9 @@ static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
         }
     } else {
         m = ins[1];
-        v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+        v = ins[2];
+        if (kind != SW_MSG_BYTE)
+            v = (s16)RCX_LE16(ins + 2);
     }
     b->msg_param = v;                  /* first, so that the events the message raises find it */
     ops_set_message(b, (u8)m);
