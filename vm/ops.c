@@ -313,12 +313,16 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
     s16 value = ops_source(b, t, ins);
 #if RCX_SWAN
     u8 ms = (u8)((ins[0] >> 2) & 1); /* WaitMS 0x47, Wait 0x43 */
+    u16 now;
 #endif
 
     if (value <= 0)
         return;                        /* negative: ignored (spec p. 67); zero: no wait */
 #if RCX_SWAN
-    t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
+    now = b->ticks10;
+    if (ms)
+        now = b->ms_now;
+    t->wake = (u16)(now + (u16)value);
     t->wait_ms = ms;
     b->waiting |= (u8)(ms + 1);        /* WAIT_MS or WAIT_10MS */
 #else
