@@ -38,14 +38,14 @@ u8 mem_resize(struct rcx *b, u8 obj, u16 size)
 
     if (size > old && delta > (u16)(RCX_ARENA_SIZE - end))
         return 0;                  /* growth needs the room */
+    end = (u16)(end - tail);       /* bytes after the object, up to the datalog's end */
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
-    if (size > old) {              /* the bytes gained are zero */
-        memmove(at + delta, at, (size_t)(end - tail));
+    /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
+     * than the arena (a shrinkage moves it down). */
+    memmove(at + (s16)delta, at, end);
+    if ((s16)delta > 0)            /* the bytes gained are zero */
         memset(at, 0, delta);
-    } else {
-        memmove(at - (u16)(old - size), at, (size_t)(end - tail));
-    }
     return 1;
 }
 
