@@ -21,6 +21,7 @@ struct source_row {
 #define LIMIT_EXISTS 0x40
 #define LIMIT_WRITABLE 0x80
 RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
+RCX_STATIC_ASSERT(rows_37_44, RCX_SOURCE_COUNT == (RCX_SWAN ? RCX_SRC_GLOBAL_IND + 1 : RCX_SRC_INDIRECT + 1));
 
 #define R LIMIT_EXISTS
 #define RW (LIMIT_EXISTS | LIMIT_WRITABLE)
@@ -34,13 +35,18 @@ RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
     (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store))
 #define FIELD(field, elem, store) PLACE(field, elem, (store) | SHAPE_FIELD)
 
-/* After the sources, Swan's message parameter, source 15 index 1: a word beside the message, a row of its own (stride
- * 0: index 1 is the field itself), which row() gives for that index. */
-#define MSG_PARAM_ROW RCX_SOURCE_COUNT
-static const struct source_row rows[RCX_SOURCE_COUNT + RCX_SWAN] = {
+/* Rows 0-36. Sources 37-44 (Swan's build) are computed and take any index, as Constant (37-42, read-only) and
+ * Variable (43-44, writable) do: row() gives those rows for them. After the rows, Swan's message parameter, source 15
+ * index 1: a word beside the message, a row of its own (stride 0: index 1 is the field itself), which row() gives
+ * for that index. */
+#define ROWS (RCX_SRC_INDIRECT + 1)
+#define MSG_PARAM_ROW ROWS
+static const struct source_row rows[ROWS + RCX_SWAN] = {
+#define RCX_SRC_ROWS /* (sources.def: no rows for 37-44) */
 #define RCX_SRC(num, id, name, max, access, place) [num] = { place, (u8)((max) | (access)) },
 #include "sources.def"
 #undef RCX_SRC
+#undef RCX_SRC_ROWS
 #if RCX_SWAN
     [MSG_PARAM_ROW] = { (u16)offsetof(struct rcx, msg_param), SHAPE_WORD | SHAPE_STORE | SHAPE_FIELD, 1 | SW },
 #endif
@@ -56,7 +62,9 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
     if (src >= RCX_SOURCE_COUNT)
         return NULL;
 #if RCX_SWAN
-    if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
+    if (src >= ROWS)
+        src = src >= RCX_SRC_GLOBAL ? RCX_SRC_VAR : RCX_SRC_CONST;
+    else if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
         src = MSG_PARAM_ROW;
 #endif
     r = &rows[src];
