@@ -52,10 +52,10 @@ static const struct source_row rows[ROWS + RCX_SWAN] = {
 #endif
 };
 
-/* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
- * program (ASK_SWAN) Swan's sources (SW) exist too. */
-#define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task (rcx.swan's 1) */
-static const struct source_row *row(u8 src, u16 index, u8 need)
+/* The row of a source that exists for the asker (task t; NULL: a host) at an index in range; NULL otherwise. For the
+ * task of a Swan program (rcx.swan: decided when its download completed) Swan's sources (SW) exist too. A write needs
+ * LIMIT_WRITABLE besides. */
+static const struct source_row *row(const struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const struct source_row *r;
     u8 max, limits;
@@ -69,30 +69,13 @@ static const struct source_row *row(u8 src, u16 index, u8 need)
 #endif
     r = &rows[src];
     limits = r->limits;
-    if (RCX_SWAN && (need & ASK_SWAN)) {
-        need &= (u8)~ASK_SWAN;
-        if (limits & LIMIT_WRITABLE)
-            limits |= LIMIT_EXISTS;
-    }
+    if (!(limits & LIMIT_EXISTS) && !(RCX_SWAN && (limits & LIMIT_WRITABLE) && t && b->swan[b->prog]))
+        return NULL;
     max = (u8)(limits & RCX_ANY);
-    if ((limits & need) != need || (max != RCX_ANY && index > max))
+    if (max != RCX_ANY && index > max)
         return NULL;
     return r;
 }
-
-/* `need` for row(), and ASK_SWAN when the asker is a task of a Swan program (rcx.swan: decided when its download
- * completed). */
-#if RCX_SWAN
-RCX_STATIC_ASSERT(ask_swan, ASK_SWAN == 1); /* rcx.swan holds 0 or 1 (vm/swan.c) */
-static u8 asker(const struct rcx *b, const struct rcx_task *t, u8 need)
-{
-    if (t)
-        need |= b->swan[b->prog];      /* (0 or 1: ASK_SWAN) */
-    return need;
-}
-#else
-#define asker(b, t, need) (need)
-#endif
 
 /* The field of a plain source at an index already checked (<= 47). Both factors are byte variables so that gcc
  * multiplies with one mulxu instead of calling __mulhi3; inlined, it leaves source_get() a register to spare. */
@@ -250,7 +233,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return (s16)index;
     if ((src == RCX_SRC_VAR && index < RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_GLOBAL && index < RCX_ALL_GLOBALS))
         return b->global[index];
-    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS))) == NULL)
+    if ((r = row(b, t, src, index)) == NULL)
         return 0;
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM) {
@@ -310,7 +293,7 @@ s16 source_poll(struct rcx *b, const u8 *cmd)
 
     /* 0: 0-31; 36: 0-47 (32-47 read 0 from a host), as firm0328 answers (the rows allow more for a Swan task) */
     if ((src == RCX_SRC_VAR && index >= RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_INDIRECT && index >= RCX_VARS)
-        || !row(src, index, LIMIT_EXISTS))
+        || !row(b, NULL, src, index))
         return (s16)-32768;
     return source_get(b, NULL, src, index);
 }
@@ -325,7 +308,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     s16 *v;
     u8 *p;
 
-    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS | LIMIT_WRITABLE))) == NULL)
+    if ((r = row(b, t, src, index)) == NULL || !(r->limits & LIMIT_WRITABLE))
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
     if (IS_VARIABLE(src)) {
