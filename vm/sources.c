@@ -118,14 +118,17 @@ static u16 next_random(struct rcx *b)
 static s16 *var_of(struct rcx *b, const struct rcx_task *t, u16 src_index)
 {
     u8 src = (u8)(src_index >> 8);
-    s16 *v;
+    u16 n = (u8)src_index;
 
     if (RCX_SWAN && src >= RCX_SRC_GLOBAL)
         t = b->task;                   /* any task: 48-255 are the globals; 32-47 of task 0 too (local_base 0) */
-    v = var_ref(b, t, (u8)src_index);
-    if (v && (src == RCX_SRC_INDIRECT || (RCX_SWAN && src == RCX_SRC_GLOBAL_IND)))
-        v = var_ref(b, t, (u16)*v);
-    return v;
+    if (src == RCX_SRC_INDIRECT || (RCX_SWAN && src == RCX_SRC_GLOBAL_IND)) {
+        const s16 *v = var_ref(b, t, n);
+        if (!v)
+            return NULL;
+        n = (u16)*v;
+    }
+    return var_ref(b, t, n);
 }
 #define IS_VARIABLE(src) ((src) == RCX_SRC_VAR || (src) == RCX_SRC_INDIRECT || (RCX_SWAN && (src) >= RCX_SRC_GLOBAL))
 RCX_STATIC_ASSERT(event_fields, offsetof(struct rcx_event, source) == 0 && offsetof(struct rcx_event, type) == 1);
