@@ -248,10 +248,21 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     p = field(b, r, index);            /* (a computed source's row may name a field too) */
     if (r->shape & SHAPE_FIELD)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
+    /* The computed sources, in the order that gave the shortest code (the variables before 37-42). */
     if (IS_VARIABLE(src)) {
         v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
         return v ? *v : 0;
     }
+    if (src == RCX_SRC_RANDOM) {
+        /* 0..index inclusive; a range below 1 gives 0. */
+        if ((s16)index <= 0)
+            return 0;
+        return (s16)(next_random(b) % (u16)(index + 1));
+    }
+    if (src == RCX_SRC_GLOBAL_MOTOR)
+        return outputs_global_status(b, (u8)index);
+    if (src == RCX_SRC_MOTOR)
+        return outputs_status(b, (u8)index);
 #if RCX_SWAN
     if (src >= RCX_SRC_LOG_TYPE_IND) {
         if (src & 1) {                 /* (n from variable n) */
@@ -262,19 +273,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     }
     if (src == RCX_SRC_MS_TIMER)       /* the field is the base */
         return (s16)((u16)(b->ms_now - *(const u16 *)(const void *)p) & 0x7FFF);
-    if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
-        return *p ? (s16)(*p - 1) : 16;
 #endif
-    if (src == RCX_SRC_MOTOR)
-        return outputs_status(b, (u8)index);
-    if (src == RCX_SRC_GLOBAL_MOTOR)
-        return outputs_global_status(b, (u8)index);
-    if (src == RCX_SRC_RANDOM) {
-        /* 0..index inclusive; a range below 1 gives 0. */
-        if ((s16)index <= 0)
-            return 0;
-        return (s16)(next_random(b) % (u16)(index + 1));
-    }
     if (src == RCX_SRC_TASK_EVENTS) {
         u8 i = (u8)index, size = sizeof *t; /* two byte variables: one mulxu; b->task[index] calls __mulhi3 */
 
@@ -282,6 +281,10 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
             return t ? (s16)t->ev.events : 0;
         return (s16)((const struct rcx_task *)((const u8 *)b->task + (u16)(i * size)))->ev.events;
     }
+#if RCX_SWAN
+    if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
+        return *p ? (s16)(*p - 1) : 16;
+#endif
     if (src == RCX_SRC_TIMER10)
         /* 10 x the 100 ms count plus the 10 ms steps into the current 100 ms tick (reference-firmware.md). */
         return (s16)((u16)(*(const u16 *)(const void *)p * 10u + b->step10) & 0x7FFF);
