@@ -333,7 +333,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 #endif
     /* Thresholds, click counter, UART buffer, message and counters (SHAPE_STORE) take any value; the rest none
      * below 0. */
-    if (!(r->shape & SHAPE_STORE)) {
+    if (!(r->shape & SHAPE_STORE)) {  /* (each source in turn, in the order that gives the shortest code) */
         if (value < 0)
             return;
         if (src == RCX_SRC_PROGRAM) {
@@ -341,14 +341,10 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
                 sched_select_program(b, (u8)value, t != NULL);
             return;
         }
-        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
-            if (value <= 0xFF) {
-                if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
-                    sensor_set_type(b, (u8)index, (u8)value);
-                else
-                    sensor_set_mode(b, (u8)index, (u8)value);
-            }
-            return;
+        if (src == RCX_SRC_WATCH) {
+            if (value >= 24 * 60)
+                return;
+            b->watch_ms = 0;
         }
         if (src == RCX_SRC_TIMER10)
             value = (s16)((u16)value / 10u);
@@ -356,14 +352,6 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         if (src == RCX_SRC_MS_TIMER)   /* its field is the base it counts from */
             value = (s16)(b->ms_now - (u16)value);
 #endif
-        if (src == RCX_SRC_WATCH) {
-            if (value >= 24 * 60)
-                return;
-            b->watch_ms = 0;
-        }
-        /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
-        if (src == RCX_SRC_DURATION && value < 5)
-            return;
 #if RCX_SWAN
         if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
             /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
@@ -379,6 +367,18 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
             return;
         }
 #endif
+        /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
+        if (src == RCX_SRC_DURATION && value < 5)
+            return;
+        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
+            if (value <= 0xFF) {
+                if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
+                    sensor_set_type(b, (u8)index, (u8)value);
+                else
+                    sensor_set_mode(b, (u8)index, (u8)value);
+            }
+            return;
+        }
     }
     p = field(b, r, index);
     if (r->shape & SHAPE_WORD)
