@@ -238,6 +238,8 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return b->global[index];
     if ((r = row(b, t, src, index)) == NULL)
         return 0;
+    p = field(b, r, index);            /* (a computed source's row may name a field too) */
+    /* The computed sources, in the order that gave the shortest code (the variables before 37-42). */
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM) {
         s16 live = system_live(b, t, (u8)index);
@@ -245,10 +247,8 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
             return live;
     }
 #endif
-    p = field(b, r, index);            /* (a computed source's row may name a field too) */
     if (r->shape & SHAPE_FIELD)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
-    /* The computed sources, in the order that gave the shortest code (the variables before 37-42). */
     if (IS_VARIABLE(src)) {
         v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
         return v ? *v : 0;
