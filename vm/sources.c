@@ -317,14 +317,14 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     if ((r = row(b, t, src, index)) == NULL || !(r->limits & LIMIT_WRITABLE))
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
-    if (IS_VARIABLE(src)) {
-        if ((!RCX_SWAN || index < RCX_ALL_GLOBALS) && (v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
-            *v = value;
-        return;
-    }
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
+        return;
+    }
+    if (IS_VARIABLE(src)) {
+        if ((!RCX_SWAN || index < RCX_ALL_GLOBALS) && (v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
+            *v = value;
         return;
     }
 #if RCX_SWAN
@@ -332,9 +332,10 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         swan_power(b, src, (u8)index, value); /* (then stored: read back as written) */
 #endif
     /* Thresholds, click counter, UART buffer, message and counters (SHAPE_STORE) take any value; the rest none
-     * below 0. */
-    if (!(r->shape & SHAPE_STORE)) {  /* (each source in turn, in the order that gives the shortest code) */
-        if (value < 0)
+     * below 0, and those of a byte (program, sensor type and mode, event type and source) none above 255. Then each
+     * source in turn, in the order that gives the shortest code. */
+    if (!(r->shape & SHAPE_STORE)) {
+        if (value < 0 || (!(r->shape & SHAPE_WORD) && value > 0xFF))
             return;
         if (src == RCX_SRC_PROGRAM) {
             if (value < RCX_PROGRAMS)
@@ -346,39 +347,33 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
                 return;
             b->watch_ms = 0;
         }
-        if (src == RCX_SRC_TIMER10)
-            value = (s16)((u16)value / 10u);
+        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
+            if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
+                sensor_set_type(b, (u8)index, (u8)value);
+            else
+                sensor_set_mode(b, (u8)index, (u8)value);
+            return;
+        }
 #if RCX_SWAN
         if (src == RCX_SRC_MS_TIMER)   /* its field is the base it counts from */
             value = (s16)(b->ms_now - (u16)value);
-#endif
-#if RCX_SWAN
         if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
             /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
             const struct rcx_event *e = &b->event[(u8)index];
             u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
-            if (value > 0xFF)              /* (not below 0 here) events_set() checks the rest */
-                return;
             if (src == RCX_SRC_EVENT_SRC)
                 k = (u8)value;
             else
                 type = (u8)value;
-            events_set(b, (u8)index, k, type);
+            events_set(b, (u8)index, k, type); /* (it checks the rest) */
             return;
         }
 #endif
         /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
         if (src == RCX_SRC_DURATION && value < 5)
             return;
-        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
-            if (value <= 0xFF) {
-                if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
-                    sensor_set_type(b, (u8)index, (u8)value);
-                else
-                    sensor_set_mode(b, (u8)index, (u8)value);
-            }
-            return;
-        }
+        if (src == RCX_SRC_TIMER10)
+            value = (s16)((u16)value / 10u);
     }
     p = field(b, r, index);
     if (r->shape & SHAPE_WORD)
