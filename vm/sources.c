@@ -185,17 +185,16 @@ static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
 static const u8 motor_bit[RCX_MOTORS] = { 1, 2, 4 }; /* 1 << motor, without a shift loop */
 static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
 {
-    u8 p = 127;                        /* the end of the scale */
+    u16 m = (u16)value;                /* the magnitude */
+    u8 p;
     u16 change;
 
     if (value < 0) {
         if (src != RCX_SRC_POWER_SIGNED)
             return;
-        if (value > -127)
-            p = (u8)-value;
-    } else if (value < 127) {
-        p = (u8)value;
+        m = (u16)(0u - m);
     }
+    p = m < 127 ? (u8)m : 127;         /* (else the end of the scale) */
     if (src != RCX_SRC_POWER8)
         p = (u8)((u16)(p * 57u + 454u) >> 10); /* = (p x 7 + 63) / 127 for every p 0-127: no division helper */
     else if (p > 7)
