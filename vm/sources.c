@@ -13,20 +13,21 @@
 struct source_row {
     u16 offset;     /* of the field for index 0 */
     u8 shape;       /* bits 0-4 stride between indices, SHAPE_WORD, SHAPE_STORE, SHAPE_FIELD */
-    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value), LIMIT_EXISTS, LIMIT_WRITABLE */
+    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value; UP_TO_255), LIMIT_EXISTS, LIMIT_WRITABLE */
 };
 #define SHAPE_WORD 0x20     /* a 16-bit field, else 8-bit unsigned */
 #define SHAPE_STORE 0x40    /* a write stores any value as it is (message and counters then tell the events) */
 #define SHAPE_FIELD 0x80    /* read straight from the field (without it, the place serves writes only) */
 #define LIMIT_EXISTS 0x40
 #define LIMIT_WRITABLE 0x80
-RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
+RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F); /* (and no source's highest index is 62: UP_TO_255) */
 RCX_STATIC_ASSERT(rows_37_44, RCX_SOURCE_COUNT == (RCX_SWAN ? RCX_SRC_GLOBAL_IND + 1 : RCX_SRC_INDIRECT + 1));
 
 #define R LIMIT_EXISTS
 #define RW (LIMIT_EXISTS | LIMIT_WRITABLE)
 #define SW LIMIT_WRITABLE /* exists only for a Swan program's tasks (row(): swan) */
-#define VAR_MAX (RCX_SWAN ? RCX_ANY : 47) /* sources 0 and 36: 0-255 for Swan's programs (var_ref() decides) */
+#define UP_TO_255 0x3E /* highest index 255: the variables of Swan's build (var_ref() decides further) */
+#define VAR_MAX (RCX_SWAN ? UP_TO_255 : 47) /* sources 0 and 36 (and 43-44, which have their row) */
 #define STORE SHAPE_STORE
 #define RCX_MEMBER(m) (((struct rcx *)0)->m)
 #define COMPUTED 0, 0
@@ -72,7 +73,7 @@ static const struct source_row *row(const struct rcx *b, const struct rcx_task *
     if (!(limits & LIMIT_EXISTS) && !(RCX_SWAN && (limits & LIMIT_WRITABLE) && t && b->swan[b->prog]))
         return NULL;
     max = (u8)(limits & RCX_ANY);
-    if (max != RCX_ANY && index > max)
+    if (max != RCX_ANY && index > (max == UP_TO_255 ? 0xFFu : max))
         return NULL;
     return r;
 }
@@ -249,7 +250,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     if (r->shape & SHAPE_FIELD)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
     if (IS_VARIABLE(src)) {
-        v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
+        v = var_of(b, t, (u16)(src << 8 | index)); /* (rows: index below 256) */
         return v ? *v : 0;
     }
     if (src == RCX_SRC_RANDOM) {
@@ -322,7 +323,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         return;
     }
     if (IS_VARIABLE(src)) {
-        if ((!RCX_SWAN || index < RCX_ALL_GLOBALS) && (v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
+        if ((v = var_of(b, t, (u16)(src << 8 | index))) != NULL) /* (rows: index below 256) */
             *v = value;
         return;
     }
