@@ -133,9 +133,13 @@ void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
     e->upper = events_default[row][1];
 }
 
-void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
+/* CalibrateEvent (p. 74): ins[1] is the event, ins[2-4] its upper, lower and hysteresis factors. That is the order nqc
+ * encodes CalibrateEvent(event, lower, upper, hysteresis) in, and the one programs were written and run with; the
+ * spec's table lists lower first. */
+void events_calibrate(struct rcx *b, const u8 *ins)
 {
     struct rcx_event *e;
+    u8 ev = ins[1];
 
     if (ev >= RCX_EVENTS || !(e = &b->event[ev])->source)
         return; /* a cleared event has no sensor to measure */
@@ -144,9 +148,7 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
     e->u.cal.sum8 = 0;
     e->u.cal.raw_sum = 0;
     e->u.cal.rem = 0;
-    e->u.cal.pct[0] = lower;
-    e->u.cal.pct[1] = upper;
-    e->u.cal.pct[2] = hyst;
+    memcpy(e->u.cal.pct, ins + 2, sizeof e->u.cal.pct);
 }
 
 /* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply. */
@@ -180,6 +182,7 @@ static s16 add_sat(s16 a, s16 b)
  * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
  * the same A/D scale. */
 #define RAW_COUNT_ONE 0x2000
+enum { PCT_UPPER, PCT_LOWER, PCT_HYST }; /* struct rcx_event_cal.pct: CalibrateEvent's operands in order */
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
@@ -199,12 +202,12 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
     }
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
      * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
-    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[2]) >> 6);
-    e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[PCT_HYST]) >> 6);
+    e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[PCT_UPPER])), e->hysteresis);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
      * in the raw-scale modes, whose values are -200 or more: with the 8th sample one of them, Avg is above -28 700
      * and H at most 127, so nothing to saturate. */
-    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
+    e->lower = (s16)(avg - fraction(avg, c->pct[PCT_LOWER]) - e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 

@@ -59,7 +59,7 @@ struct rcx_event {
             s16 sum8;       /* of the values sampled so far, each divided by 8 (rem: the remainders) */
             u16 raw_sum;    /* of the raw samples (inputs only), and in its top 3 bits how many */
             u8 rem;
-            u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
+            u8 pct[3];      /* CalibrateEvent's operands: upper, lower, hysteresis factors */
             u8 unused[2];   /* spare: struct rcx keeps its layout (RF_ARENA, drivers/h8300/runfast.h) */
         } cal;
     } u;
@@ -80,7 +80,7 @@ struct rcx_task_events {
 void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
 static inline void events_init(struct rcx *b) { events_clear_all(b); } /* power-on: every event cleared */
 void events_set(struct rcx *b, u8 ev, u8 source, u8 type);           /* SetEvent, operands checked */
-void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst); /* CalibrateEvent, byte order of p. 74 */
+void events_calibrate(struct rcx *b, const u8 *ins);                  /* CalibrateEvent: its byte code */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
 void events_counter_changed(struct rcx *b, u8 n);
 void events_message_changed(struct rcx *b);
