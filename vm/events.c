@@ -379,16 +379,3 @@ void events_tick(struct rcx *b)
     if (b->sensor[0].others)
         evaluate_set(b, b->sensor[0].others, ANY);
 }
-
-/* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on
- * p. 26 ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC
- * jumps to the region's label - back inside the subroutine, which is what the note wants to prevent - so
- * EXIT AC is sent instead. */
-void events_sub_returned(struct rcx *b, struct rcx_task *t)
-{
-    /* In a state without the region the input changes nothing (p. 107), so the labels alone decide. */
-    if (t->ev.ac_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_AC);
-    if (t->ev.ev_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_EV);
-}

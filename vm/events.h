@@ -95,6 +95,17 @@ void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target);
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
 #define events_task_ended(b, t) ((void)(b), (t)->ev.rc = 0, (void)((t)->ev.state = ACCESS_NONE))
-void events_sub_returned(struct rcx *b, struct rcx_task *t); /* EndOfSub: leave regions entered in the sub */
+/* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on p. 26
+ * ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC jumps to
+ * the region's label - back inside the subroutine, which is what the note wants to prevent - so EXIT AC is sent
+ * instead. In a state without the region the input changes nothing (p. 107), so the labels alone decide. A macro,
+ * for struct rcx_task is not complete here; its one caller is in vm/interp.c. */
+#define events_sub_returned(b, t)                                      \
+    do {                                                               \
+        if ((t)->ev.ac_sub == (t)->sub)                                \
+            access_input(b, t, ACCESS_IN_EXIT_AC);                     \
+        if ((t)->ev.ev_sub == (t)->sub)                                \
+            access_input(b, t, ACCESS_IN_EXIT_EV);                     \
+    } while (0)
 
 #endif
