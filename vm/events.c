@@ -202,7 +202,7 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
     }
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
      * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
-    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[PCT_HYST]) >> 6);
+    e->hysteresis = (u8)((u16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[PCT_HYST]) << 2) >> 8);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[PCT_UPPER])), e->hysteresis);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
      * in the raw-scale modes, whose values are -200 or more: with the 8th sample one of them, Avg is above -28 700

@@ -87,11 +87,11 @@ void events_message_changed(struct rcx *b);
 void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
 void events_tick(struct rcx *b);             /* every 10 ms (vm_tick) */
 
-/* Monitoring and access control; `target` is the handler's pc in the task's current code object. The inputs without
+/* Monitoring and access control. ENTER EV and ENTER AC are the byte code at ins (S/LEnterEventCheck or
+ * EnterAccessControl), `target` its label: the handler's pc in the task's current code object. The inputs without
  * operands are one call of the state machine (vm/access.h), made in place. */
-void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target);
+void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target);
 static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
-void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target);
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
 #define events_task_ended(b, t) ((void)(b), (t)->ev.rc = 0, (void)((t)->ev.state = ACCESS_NONE))

@@ -139,7 +139,7 @@ static void bad_operands_are_ignored(void **state)
     set_event(b, 15, SRC_COUNTER0 + 2, LOW);
     calibrate(b, 15, 1, 2, 3);
     counter(b, 0, 3);
-    events_monitor_enter(b, &b->task[4], 0x8000, 0x44);
+    brick_enter_ev(b, &b->task[4], 0x8000, 0x44);
     for (i = 0; i < sizeof rows / sizeof rows[0] + sizeof cal_rows / sizeof cal_rows[0] + 6; i++) {
         memcpy(events, b->event, sizeof events);
         memcpy(tasks, b->task, sizeof tasks);
