@@ -253,15 +253,15 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
  * the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
-    s16 h = e->hysteresis;
+    s16 h = 0;
 
-    if (e->state != RCX_EVENT_STATE_HIGH)
-        h = 0;
+    if (e->state == RCX_EVENT_STATE_HIGH)
+        h = e->hysteresis;
     if (value > add_sat(e->upper, (s16)-h))
         return RCX_EVENT_STATE_HIGH;
-    h = e->hysteresis;
-    if (e->state != RCX_EVENT_STATE_LOW)
-        h = 0;
+    h = 0;
+    if (e->state == RCX_EVENT_STATE_LOW)
+        h = e->hysteresis;
     if (value < add_sat(e->lower, h))
         return RCX_EVENT_STATE_LOW;
     return RCX_EVENT_STATE_NORMAL;
@@ -306,7 +306,7 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
     /* The first classification after SetEvent or a calibration is not a change of range. */
     if (to != from && from != RCX_EVENT_STATE_UNDEFINED)
         happened |= (u16)((u16)changed(b, e, from, to) << 8);
-    return happened && bit_of(happened, e->type);
+    return bit_of(happened, e->type);
 }
 
 /* Evaluate the events watching the sensor whose KEY is `only` (ANY: any timer, the message or a counter) and tell the
@@ -322,7 +322,7 @@ static void evaluate_set(struct rcx *b, u8 left, u8 only)
 
     do {
         k = e->source;
-        if (only == ANY ? k > KEY(RCX_SENSORS - 1) : k == only) {
+        if (k == only || (only == ANY && k > KEY(RCX_SENSORS - 1))) {
             if (evaluate(b, e, only))
                 fired += bit; /* bits of distinct events: no carries */
             if (!--left)
