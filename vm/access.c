@@ -126,9 +126,10 @@ void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target)
             t->ev.rc = resources;
             t->ev.state = (u8)(ACCESS_AC | (t->ev.state & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
         } else {
-            /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the
-             * same place: what remains of it is EXIT AC. */
-            jump(b, t, target);
+            /* JUMP LBL (in the code object the task is in; the task runs this byte code, so it is not asleep in
+             * a Wait); in an access region SEND AC, whose JUMP AC goes to the same place: what remains of it is
+             * EXIT AC. */
+            t->pc = target;
             if (!ACCESS_HAS_AC(t->ev.state))
                 return;
             access_input(b, t, ACCESS_IN_EXIT_AC);
