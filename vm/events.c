@@ -201,7 +201,8 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
             c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
-     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
+     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less; that /64 as *4 then /256 (a byte
+     * move), since (8 AvgRaw)*HFct/256 is below 8 184. */
     e->hysteresis = (u8)((u16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[PCT_HYST]) << 2) >> 8);
     e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[PCT_UPPER])), e->hysteresis);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
