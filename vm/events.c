@@ -99,39 +99,44 @@ void events_clear_all(struct rcx *b)
 {
     u8 ev;
     for (ev = 0; ev < RCX_EVENTS; ev++)
-        events_set(b, ev, 0, RCX_EVENT_NONE);
+        events_set_packed(b, ev, RCX_EVENT_NONE);
 }
 
-void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
+/* SetEvent: `st` is the source in its high byte, the type in its low byte (events_set(), vm/events.h). */
+#define SOURCE ((u8)(st >> 8))
+#define TYPE ((u8)st)
+void events_set_packed(struct rcx *b, u8 ev, u16 st)
 {
     struct rcx_event *e;
     const struct rcx_sensor *in;
     u8 row;
 
     /* 4-6, 13, 15 and above 16 are no event types; 16 clears the event. */
-    if (ev >= RCX_EVENTS || source > RCX_EVENT_SRC_LAST || (type != RCX_EVENT_NONE && !bit_of(VALID_TYPES, type)))
+    if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
         return;
     e = &b->event[ev];
     if (e->source)
         watch(b, (u8)(e->source - KEY(0)), 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
-    e->type = type;
+    e->type = TYPE;
     e->state = RCX_EVENT_STATE_UNDEFINED;
     e->duration = 15; /* 150 ms, the click default of p. 71 */
-    if (type == RCX_EVENT_NONE)
+    if (TYPE == RCX_EVENT_NONE)
         return;
-    e->source = KEY(source);
-    in = watch(b, source, 1);
-    if (source < RCX_SENSORS) {
+    e->source = KEY(SOURCE);
+    in = watch(b, SOURCE, 1);
+    if (SOURCE < RCX_SENSORS) {
         row = (u8)(in->mode >> 5);
         /* Edges are counted from here on, not from whatever the input did before. */
         e->flags = in->boolean; /* F_BOOL */
     } else {
-        row = virtual_row[source - RCX_SENSORS];
+        row = virtual_row[SOURCE - RCX_SENSORS];
     }
     e->lower = events_default[row][0];
     e->upper = events_default[row][1];
 }
+#undef SOURCE
+#undef TYPE
 
 /* CalibrateEvent (p. 74): ins[1] is the event, ins[2-4] its upper, lower and hysteresis factors. That is the order nqc
  * encodes CalibrateEvent(event, lower, upper, hysteresis) in, and the one programs were written and run with; the

@@ -79,7 +79,10 @@ struct rcx_task_events {
 
 void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
 static inline void events_init(struct rcx *b) { events_clear_all(b); } /* power-on: every event cleared */
-void events_set(struct rcx *b, u8 ev, u8 source, u8 type);           /* SetEvent, operands checked */
+/* SetEvent, operands checked. Source and type travel as the two bytes of one word: a fourth argument would go on the
+ * stack. */
+#define events_set(b, ev, source, type) events_set_packed(b, ev, (u16)((u16)(u8)(source) << 8 | (u8)(type)))
+void events_set_packed(struct rcx *b, u8 ev, u16 source_type);
 void events_calibrate(struct rcx *b, const u8 *ins);                  /* CalibrateEvent: its byte code */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
 void events_counter_changed(struct rcx *b, u8 n);
