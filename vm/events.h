@@ -97,7 +97,9 @@ void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target);
 static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
-#define events_task_ended(b, t) ((void)(b), (t)->ev.rc = 0, (void)((t)->ev.state = ACCESS_NONE))
+#define events_task_ended(b, t) ((void)(b), (void)(*(u16 *)(void *)&(t)->ev.rc = 0)) /* RC and state: one word */
+RCX_STATIC_ASSERT(rc_state_word, offsetof(struct rcx_task_events, rc) % 2 == 0 &&
+                  offsetof(struct rcx_task_events, state) == offsetof(struct rcx_task_events, rc) + 1 && ACCESS_NONE == 0);
 /* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on p. 26
  * ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC jumps to
  * the region's label - back inside the subroutine, which is what the note wants to prevent - so EXIT AC is sent
