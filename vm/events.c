@@ -276,7 +276,7 @@ static u8 classify(const struct rcx_event *e, s16 value)
 /* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
  * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
  * non-zero when the event fires. */
-#define ANY 0xFE /* above every KEY */
+#define ANY EVENTS_ANY
 static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
@@ -320,7 +320,7 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
  * sensors), so that the loop can stop at the last one; 0 when not known: all 16 are looked at. */
 RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
                   sizeof(((struct rcx *)0)->global[0]) == 2);
-static void evaluate_set(struct rcx *b, u8 left, u8 only)
+void events_evaluate(struct rcx *b, u8 left, u8 only)
 {
     struct rcx_event *e = b->event;
     u16 bit = 1, fired = 0;
@@ -357,13 +357,13 @@ void events_raise(struct rcx *b, u16 mask)
 void events_counter_changed(struct rcx *b, u8 n)
 {
     if (n < RCX_COUNTERS)
-        evaluate_set(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
+        events_evaluate(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
 }
 
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 void events_message_changed(struct rcx *b)
 {
-    evaluate_set(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
+    events_evaluate(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
 }
 
 void events_input(struct rcx *b, u8 n)
@@ -372,16 +372,6 @@ void events_input(struct rcx *b, u8 n)
 
     if (n < RCX_SENSORS) {
         s = b->sensor + n;
-        evaluate_set(b, s->watched, KEY(n));
+        events_evaluate(b, s->watched, KEY(n));
     }
-}
-
-/* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
- * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
- * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
- * timers have moved on and before the tasks the step wakes run). */
-void events_tick(struct rcx *b)
-{
-    if (b->sensor[0].others)
-        evaluate_set(b, b->sensor[0].others, ANY);
 }

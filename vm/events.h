@@ -88,7 +88,18 @@ void events_raise(struct rcx *b, u16 mask);                           /* DirectE
 void events_counter_changed(struct rcx *b, u8 n);
 void events_message_changed(struct rcx *b);
 void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
-void events_tick(struct rcx *b);             /* every 10 ms (vm_tick) */
+/* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
+ * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
+ * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
+ * timers have moved on and before the tasks the step wakes run), when an event watches one of them (sensor[0]
+ * counts those). A macro, for struct rcx is not complete here: one test and a call at its one caller. */
+#define events_tick(b)                                                               \
+    do {                                                                             \
+        if ((b)->sensor[0].others)                                                   \
+            events_evaluate(b, (b)->sensor[0].others, EVENTS_ANY);                   \
+    } while (0)
+#define EVENTS_ANY 0xFE /* events_evaluate(): all of them, any KEY above the inputs' (vm/events.c) */
+void events_evaluate(struct rcx *b, u8 left, u8 only);
 
 /* Monitoring and access control. ENTER EV and ENTER AC are the byte code at ins (S/LEnterEventCheck or
  * EnterAccessControl), `target` its label: the handler's pc in the task's current code object. The inputs without
