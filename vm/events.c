@@ -69,8 +69,9 @@ static const s16 events_default[10][2] = {
 #define F_HIGH 0x04     /* ... and has reached HIGH since (set only with F_OUT) */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
 
-/* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. */
-static u8 bit_of(u16 set, u8 n)
+/* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. Always inline: a call in the loop of
+ * events_evaluate() would cost more than the loop, in the values kept across it. */
+static inline __attribute__((always_inline)) u8 bit_of(u16 set, u8 n)
 {
     while (n--)
         set >>= 1;
