@@ -90,7 +90,6 @@ static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
         s += n;
         s->number = n;
         s->watched = (u8)(s->watched + d);
-        b->sensors_rest = 0;
     }
     return s;
 }
@@ -116,6 +115,7 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
     if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
         return;
     e = &b->event[ev];
+    b->sensors_rest = 0; /* an input may gain a watcher: its samples must be fed (vm/sensors.h) */
     if (e->source)
         watch(b, (u8)(e->source - KEY(0)), 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
