@@ -276,9 +276,9 @@ static u8 classify(const struct rcx_event *e, s16 value)
 
 /* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
  * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
- * non-zero when the event fires. */
+ * the event types that happened (bit n: type n); the event fires when its own is one of them. */
 #define ANY EVENTS_ANY
-static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
+static u16 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
     u8 s = (u8)(e->source - KEY(0)), to, from, bo;
@@ -303,17 +303,17 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
                                                   ? offsetof(struct rcx, timer) - 2u * RCX_EVENT_SRC_TIMER
                                                   : offsetof(struct rcx, global) - 2u * RCX_EVENT_SRC_COUNTER));
     }
-    if (e->state >= RCX_EVENT_STATE_CAL_START) {
+    from = e->state;
+    if (from >= RCX_EVENT_STATE_CAL_START) {
         calibrate_sample(in, e, value);
         return 0;
     }
     to = classify(e, value);
-    from = e->state;
     e->state = to;
     /* The first classification after SetEvent or a calibration is not a change of range. */
     if (to != from && from != RCX_EVENT_STATE_UNDEFINED)
         happened |= (u16)((u16)changed(b, e, from, to) << 8);
-    return bit_of(happened, e->type);
+    return happened;
 }
 
 /* Evaluate the events watching the sensor whose KEY is `only` (ANY: any timer, the message or a counter) and tell the
@@ -330,7 +330,7 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
     do {
         k = e->source;
         if (k == only || (only == ANY && k > KEY(RCX_SENSORS - 1))) {
-            if (evaluate(b, e, only))
+            if (bit_of(evaluate(b, e, only), e->type))
                 fired += bit; /* bits of distinct events: no carries */
             if (!--left)
                 break;
