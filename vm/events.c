@@ -78,20 +78,27 @@ static inline __attribute__((always_inline)) u8 bit_of(u16 set, u8 n)
     return (u8)(set & 1u);
 }
 
-/* One more (d = 1) or one less (d = 0xFF) event watches sensor n: an input counts its own (and learns its number,
- * for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the input, or sensor[0]. */
-static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
+/* Event e starts (d = 1) or stops (d = 0xFF) watching its sensor (e->source, not 0): an input counts its own watchers
+ * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. The event
+ * takes the sensor's default thresholds and an input's boolean, from which edges are counted (no use when it stops:
+ * events_set() clears the event right after). */
+static void watch(struct rcx *b, struct rcx_event *e, u8 d)
 {
     struct rcx_sensor *s = b->sensor;
+    u8 n = (u8)(e->source - KEY(0)), row;
 
     if (n >= RCX_SENSORS) {
         s->others = (u8)(s->others + d);
+        row = virtual_row[n - RCX_SENSORS];
     } else {
         s += n;
         s->number = n;
         s->watched = (u8)(s->watched + d);
+        row = (u8)(s->mode >> 5);
+        e->flags = s->boolean; /* F_BOOL */
     }
-    return s;
+    e->lower = events_default[row][0];
+    e->upper = events_default[row][1];
 }
 
 /* Spec p. 25: tasks monitoring events are not told. */
@@ -108,8 +115,6 @@ void events_clear_all(struct rcx *b)
 void events_set_packed(struct rcx *b, u8 ev, u16 st)
 {
     struct rcx_event *e;
-    const struct rcx_sensor *in;
-    u8 row;
 
     /* 4-6, 13, 15 and above 16 are no event types; 16 clears the event. */
     if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
@@ -117,7 +122,7 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
     e = &b->event[ev];
     b->sensors_rest = 0; /* an input may gain a watcher: its samples must be fed (vm/sensors.h) */
     if (e->source)
-        watch(b, (u8)(e->source - KEY(0)), 0xFF);
+        watch(b, e, 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
     e->type = TYPE;
     e->state = RCX_EVENT_STATE_UNDEFINED;
@@ -125,16 +130,7 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
     if (TYPE == RCX_EVENT_NONE)
         return;
     e->source = KEY(SOURCE);
-    in = watch(b, SOURCE, 1);
-    if (SOURCE < RCX_SENSORS) {
-        row = (u8)(in->mode >> 5);
-        /* Edges are counted from here on, not from whatever the input did before. */
-        e->flags = in->boolean; /* F_BOOL */
-    } else {
-        row = virtual_row[SOURCE - RCX_SENSORS];
-    }
-    e->lower = events_default[row][0];
-    e->upper = events_default[row][1];
+    watch(b, e, 1);
 }
 #undef SOURCE
 #undef TYPE
