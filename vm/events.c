@@ -61,7 +61,7 @@ static const s16 events_default[10][2] = {
 
 /* struct rcx_event.source is the KEY of the event's sensor, 0 for a cleared event: so an event is all zeros when it
  * has no sensor, as at power-on, before ClearAllEvents, when no input counts it yet. */
-#define KEY(sensor) ((u8)((sensor) + 1))
+#define KEY(sensor) EVENTS_KEY(sensor)
 
 /* Private flags of struct rcx_event. */
 #define F_BOOL 0x01     /* last boolean seen (inputs); the boolean is 0 or 1, so it is that bit */
@@ -273,7 +273,7 @@ static u8 classify(const struct rcx_event *e, s16 value)
 /* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
  * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
  * the event types that happened (bit n: type n); the event fires when its own is one of them. */
-#define ANY EVENTS_ANY
+#define ANY EVENTS_ANY /* above every KEY */
 static u16 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
@@ -349,18 +349,6 @@ void events_raise(struct rcx *b, u16 mask)
             access_input(b, t, ACCESS_IN_EV);
         }
     while (++t < b->task + RCX_TASKS);
-}
-
-void events_counter_changed(struct rcx *b, u8 n)
-{
-    if (n < RCX_COUNTERS)
-        events_evaluate(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
-}
-
-/* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
-void events_message_changed(struct rcx *b)
-{
-    events_evaluate(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
 }
 
 void events_input(struct rcx *b, u8 n)

@@ -7,6 +7,7 @@
 #define RCX_EVENTS_H
 
 #include "rcx_types.h"
+#include "rcx_limits.h"
 #include "access.h"
 
 struct rcx;
@@ -85,21 +86,32 @@ static inline void events_init(struct rcx *b) { events_clear_all(b); } /* power-
 void events_set_packed(struct rcx *b, u8 ev, u16 source_type);
 void events_calibrate(struct rcx *b, const u8 *ins);                  /* CalibrateEvent: its byte code */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
-void events_counter_changed(struct rcx *b, u8 n);
-void events_message_changed(struct rcx *b);
-void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
+
+/* The engine looks at the events watching a sensor whenever that sensor may have changed: events_evaluate() takes the
+ * events whose sensor's KEY (its SetEvent number + 1) is `key`, or EVENTS_ANY: those of the timers, the message and
+ * the counters; `left` is how many there are, 0 when not known (vm/events.c). The notifications below are inline, so
+ * that each costs its caller one call. */
+#define EVENTS_KEY(sensor) ((u8)((sensor) + 1))
+#define EVENTS_ANY 0xFE /* above every KEY */
+void events_evaluate(struct rcx *b, u8 left, u8 key);
+static inline void events_counter_changed(struct rcx *b, u8 n)
+{
+    if (n < RCX_COUNTERS)
+        events_evaluate(b, 0, (u8)(EVENTS_KEY(RCX_EVENT_SRC_COUNTER) + n));
+}
+/* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
+static inline void events_message_changed(struct rcx *b) { events_evaluate(b, 0, EVENTS_KEY(RCX_EVENT_SRC_MESSAGE)); }
+void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean may have changed */
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
  * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
  * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
  * timers have moved on and before the tasks the step wakes run), when an event watches one of them (sensor[0]
- * counts those). A macro, for struct rcx is not complete here: one test and a call at its one caller. */
-#define events_tick(b)                                                               \
-    do {                                                                             \
-        if ((b)->sensor[0].others)                                                   \
-            events_evaluate(b, (b)->sensor[0].others, EVENTS_ANY);                   \
+ * counts those). A macro: struct rcx is not complete here. */
+#define events_tick(b)                                                          \
+    do {                                                                        \
+        if ((b)->sensor[0].others)                                              \
+            events_evaluate(b, (b)->sensor[0].others, EVENTS_ANY);              \
     } while (0)
-#define EVENTS_ANY 0xFE /* events_evaluate(): all of them, any KEY above the inputs' (vm/events.c) */
-void events_evaluate(struct rcx *b, u8 left, u8 only);
 
 /* Monitoring and access control. ENTER EV and ENTER AC are the byte code at ins (S/LEnterEventCheck or
  * EnterAccessControl), `target` its label: the handler's pc in the task's current code object. The inputs without
