@@ -320,13 +320,13 @@ RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0])
 void events_evaluate(struct rcx *b, u8 left, u8 only)
 {
     struct rcx_event *e = b->event;
-    u16 bit = 1, fired = 0;
+    u16 bit = 1, fired = 0, happened;
     u8 k;
 
     do {
         k = e->source;
         if (k == only || (only == ANY && k > KEY(RCX_SENSORS - 1))) {
-            if (bit_of(evaluate(b, e, only), e->type))
+            if ((happened = evaluate(b, e, only)) != 0 && bit_of(happened, e->type))
                 fired += bit; /* bits of distinct events: no carries */
             if (!--left)
                 break;
