@@ -153,11 +153,12 @@ void events_calibrate(struct rcx *b, const u8 *ins)
     memcpy(e->u.cal.pct, ins + 2, sizeof e->u.cal.pct);
 }
 
-/* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply. */
+/* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply (the low byte's product first: gcc then
+ * needs no register saved). */
 static s16 fraction(s16 v, u8 f)
 {
-    u16 s = (u16)(v >> 15), m = (u16)(((u16)v ^ s) - s); /* s: 0, or all ones for a negative v */
-    m = (u16)((u16)(u8)(m >> 8) * f + (((u16)(u8)m * f) >> 8));
+    u16 s = (u16)(v >> 15), m = (u16)(((u16)v ^ s) - s);
+    m = (u16)((((u16)(u8)m * f) >> 8) + (u16)(u8)(m >> 8) * f);
     return (s16)((m ^ s) - s);
 }
 
