@@ -88,12 +88,12 @@ void events_calibrate(struct rcx *b, const u8 *ins);                  /* Calibra
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
 
 /* The engine looks at the events watching a sensor whenever that sensor may have changed: events_evaluate() takes the
- * events whose sensor's KEY (its SetEvent number + 1) is `key`, or EVENTS_ANY: those of the timers, the message and
- * the counters; `left` is how many there are, 0 when not known (vm/events.c). The notifications below are inline, so
- * that each costs its caller one call. */
+ * events whose sensor's KEY (its SetEvent number + 1) is `only`, or with EVENTS_ANY those of the timers, the message
+ * and the counters; `left` is how many there are, 0 when not known (vm/events.c). The notifications below are inline,
+ * so that each costs its caller one call. */
 #define EVENTS_KEY(sensor) ((u8)((sensor) + 1))
 #define EVENTS_ANY 0xFE /* above every KEY */
-void events_evaluate(struct rcx *b, u8 left, u8 key);
+void events_evaluate(struct rcx *b, u8 left, u8 only);
 static inline void events_counter_changed(struct rcx *b, u8 n)
 {
     if (n < RCX_COUNTERS)
@@ -121,8 +121,8 @@ static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { acce
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
 #define events_task_ended(b, t) ((void)(b), (void)(*(u16 *)(void *)&(t)->ev.rc = 0)) /* RC and state: one word */
-RCX_STATIC_ASSERT(rc_state_word, offsetof(struct rcx_task_events, rc) % 2 == 0 &&
-                  offsetof(struct rcx_task_events, state) == offsetof(struct rcx_task_events, rc) + 1 && ACCESS_NONE == 0);
+RCX_STATIC_ASSERT(rc_state_word, offsetof(struct rcx_task_events, rc) % 2 == 0 && ACCESS_NONE == 0 &&
+                  offsetof(struct rcx_task_events, state) == offsetof(struct rcx_task_events, rc) + 1);
 /* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on p. 26
  * ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC jumps to
  * the region's label - back inside the subroutine, which is what the note wants to prevent - so EXIT AC is sent
