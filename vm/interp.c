@@ -135,10 +135,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     case C_ACCESS:
         if ((s16)to < 0)
             goto stop;
-        if (i == C_ACCESS)
-            access_enter(b, t, ins[1], to);
-        else
-            events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
+        access_enter(b, t, ins, to);
         break;
     default:
         ops_exec(b, t, ins);

@@ -291,9 +291,7 @@ OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
 OP(op_calibrate)
 {
     UNUSED_T;
-    /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
-     * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
-    events_calibrate(b, ins[1], ins[3], ins[2], ins[4]);
+    events_calibrate(b, ins); /* which reads the operands in nqc's order (vm/events.c) */
 }
 OP(op_set_source)
 {
