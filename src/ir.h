@@ -42,8 +42,8 @@ struct rcx_ir {
                            the brick transmits); the last reply from rx[reply_at] */
 
     /* Repeat rule: a packet whose opcode byte equals the last one is answered again, not executed; IR messages
-     * (F7, FF) never are. Starts as F7, so that the first packet is always new, and becomes F7 again once a packet
-     * reaches into the reply, which then can no longer be sent again. */
+     * (F7, FF) never are. Becomes F7 once a packet reaches into the reply, which then can no longer be sent again:
+     * so the first packet is always new (reply_at starts at 0, and its first byte reaches it). */
     u8 last_op;
     u8 reply_len;       /* 0: the last command has no reply */
     u8 reply_at;        /* where in rx the last reply is: after its command and after the chunk */
@@ -54,10 +54,10 @@ struct rcx_ir {
     u8 tx_pack;         /* IR_PACK_* below */
     u8 tx_mode;         /* HAL_IR_* */
     u8 tx_sum;
-    /* Positions in the framed packet, counted from the preamble's first byte even when it has none (tx_pos then
-     * starts at 3): the next byte, and the end. */
+    /* The next byte's position in the framed packet, counted from the preamble's first byte even when it has none
+     * (tx_pos then starts at 3), and the bytes not handed to the driver yet (nonzero: a packet goes out). */
     u16 tx_pos;
-    u16 tx_total;
+    u16 tx_left;
     u16 echo;           /* own bytes not heard back yet */
     u8 echo_quiet;      /* milliseconds since the transmitter went idle with echo outstanding */
     u8 range;           /* range last given to hal_ir_range() */
@@ -66,9 +66,9 @@ struct rcx_ir {
 /* rcx_ir.rx_state (src/ir.c). */
 enum {
     IR_RX_IDLE = 0,  /* looking for a header or an opcode */
+    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value (if not, it may begin a packet: below 2, as IDLE) */
     IR_RX_OPCODE,    /* a header ended (its 00): the next byte is the opcode, even FF (F7 toggled) */
     IR_RX_VALUE,     /* next byte is a value */
-    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value */
     IR_RX_READY,     /* a good packet waits for ir_poll(); this and the next ignore what arrives */
     IR_RX_DRAIN      /* oversized: ignore everything until IR_QUIET_MS of silence */
 };
@@ -79,9 +79,9 @@ enum {
 #define IR_PACK_CHECKSUM 0x04   /* a checksum byte (always present with IR_PACK_COMPLEMENT) */
 #define IR_PACK_STANDARD 0x07
 
-/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll(), and the first packet is
- * new. A macro: rt_init() is its one user. */
-#define ir_init(k) ((k)->ir.range = 0xFF, (k)->ir.last_op = RCX_OP_MESSAGE)
+/* Once rt_init() has cleared struct rcx_ir: the range is applied at the first ir_poll() (and the first packet is new
+ * without more: last_op). A macro: rt_init() is its one user. */
+#define ir_init(k) ((k)->ir.range = 0xFF)
 /* Received bytes arrive through rt_ir_byte() (src/runtime.h), which src/ir.c implements. */
 void ir_tick(struct rcx_brick *k);
 void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies and the machine's requests */
@@ -91,8 +91,9 @@ void ir_poll(struct rcx_brick *k); /* execute a complete packet, send replies an
  * With nothing being sent, no packet to answer, no request (nor a message to follow its parameter) and the range as
  * it was, there is nothing to poll for. */
 #define ir_tick_due(k) ((k)->ir.quiet < IR_QUIET_MS || (k)->ir.echo || (k)->ir.echo_quiet)
-#define ir_poll_due(k) ((k)->ir.tx_pos < (k)->ir.tx_total || (k)->ir.rx_state == IR_RX_READY || \
-                        (k)->vm.remote.tx_len || (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
-u8 ir_idle(struct rcx_brick *k);   /* nothing being sent and no echo outstanding */
+#define ir_poll_due(k) ((k)->ir.tx_left || (k)->ir.rx_state == IR_RX_READY || (k)->vm.remote.tx_len || \
+                        (RCX_SWAN && (k)->vm.remote.follow) || (k)->ir.range != (k)->vm.tx_range)
+u8 ir_busy(struct rcx_brick *k);   /* nonzero while something is being sent or an echo is outstanding */
+#define ir_idle(k) (!ir_busy(k))
 
 #endif

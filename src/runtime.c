@@ -1,4 +1,5 @@
-/* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. */
+/* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. On the brick
+ * they run from .high (linker/openrcx.ld), as IR and user interface do. */
 #include "rcx_string.h"
 #include "runtime.h"
 #include "hal.h"
@@ -22,7 +23,7 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
         ir_poll(k);
     /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a
      * downloader sends the next command the moment it has the reply. */
-    if (k->vm.boot_mode && ir_idle(k)) {
+    if (k->vm.boot_mode && !ir_busy(k)) {
         k->vm.boot_mode = 0;
         hal_enter_rom(&k->vm);
         return 0;

@@ -46,18 +46,24 @@ void ui_button(struct rcx_brick *k, u8 button, u8 down)
     sound_ui(b, 0); /* key click */
 }
 
-/* Every millisecond: the fields addressed from k each time, which costs less than a pointer set up for them. */
+/* Every millisecond: the fields addressed from k each time, which costs less than a pointer set up for them, and the
+ * milliseconds stored once. */
 void ui_tick(struct rcx_brick *k)
 {
+    u16 ms = 0;
+
     if (k->vm.idle_reset) {
         k->vm.idle_reset = 0;
-        k->ui.idle_ms = 0;
         k->ui.idle_min = 0;
-    } else if (++k->ui.idle_ms >= UI_MINUTE_MS) {
-        k->ui.idle_ms -= UI_MINUTE_MS; /* not 0: rt_skip() may have counted past the minute */
-        if (k->vm.power_down_min && ++k->ui.idle_min >= k->vm.power_down_min)
-            k->ui.off = UI_OFF_ASKED;
+    } else {
+        ms = (u16)(k->ui.idle_ms + 1);
+        if (ms >= UI_MINUTE_MS) {
+            ms -= UI_MINUTE_MS; /* not 0: rt_skip() may have counted past the minute */
+            if (k->vm.power_down_min && ++k->ui.idle_min >= k->vm.power_down_min)
+                k->ui.off = UI_OFF_ASKED;
+        }
     }
+    k->ui.idle_ms = ms;
 }
 
 /* A new battery reading (every 64 ms on the brick). */
@@ -90,7 +96,7 @@ void ui_poll(struct rcx_brick *k)
     }
     off = k->ui.off;
     /* A PBTurnOff from the host is acknowledged first: the reply and its echo have to be through. */
-    if (!off || !ir_idle(k))
+    if (!off || ir_busy(k))
         return;
     if (off == UI_OFF_ASKED) {
         k->ui.off = UI_OFF_CLICKING;

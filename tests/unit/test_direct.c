@@ -583,6 +583,29 @@ static void delete_sub_stops_tasks_inside(void **state)
     brick_free(b);
 }
 
+/* DeleteTask 10 and DeleteSub 8 name nothing (tasks 0-9, subroutines 0-7, spec pp. 30, 36): acknowledged, and the code
+ * objects right after the slot's last task and last subroutine (the next slot's subroutine 0, this slot's task 0)
+ * stay, running or not, as does everything else. */
+static void delete_past_the_last_changes_nothing(void **state)
+{
+    struct rcx *b = brick_new(), *s;
+    (void)state;
+    SEND(b, NULL, 0x91, 0x01);
+    assert_int_equal(brick_download(b, 0, 0, spin, sizeof spin), 0); /* program 2's subroutine 0 */
+    SEND(b, NULL, 0x91, 0x00);
+    assert_int_equal(brick_download(b, 1, 0, spin, sizeof spin), 0);
+    assert_int_equal(brick_download(b, 1, 9, loop_inc0, sizeof loop_inc0), 0);
+    assert_int_equal(brick_download(b, 0, 7, spin, sizeof spin), 0);
+    brick_start(b, 0);
+    s = brick_copy(b);
+    assert_int_equal(SEND(b, NULL, 0x61, 0x0A), 1);
+    assert_int_equal(SEND(b, NULL, 0x69, 0xFF), 1);
+    assert_int_equal(SEND(b, NULL, 0xC1, 0x08), 1);
+    assert_int_equal(SEND(b, NULL, 0xC9, 0xFF), 1);
+    assert_unchanged(b, s);
+    brick_free(b);
+}
+
 static void power_requests(void **state)
 {
     struct rcx *b = brick_new();
@@ -667,6 +690,7 @@ int main(void)
         cmocka_unit_test(start_stop_task),
         cmocka_unit_test(delete_task_and_all_tasks),
         cmocka_unit_test(delete_sub_stops_tasks_inside),
+        cmocka_unit_test(delete_past_the_last_changes_nothing),
         cmocka_unit_test(power_requests),
         cmocka_unit_test(tx_range),
         cmocka_unit_test(boot_mode),
