@@ -97,49 +97,56 @@ static u8 granted(const struct rcx *b, const struct rcx_task *t, u8 res)
     return 1;
 }
 
-/* ENTER EV: MON, LBL. */
-void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target)
+/* ENTER EV (SEnterEventCheck, LEnterEventCheck: MON, LBL) or ENTER AC (EnterAccessControl: RES, LBL), the byte code at
+ * ins; `target` is LBL, the pc its distance leads to in the task's current code object. One function for the three,
+ * so that the interpreter has one call to make. No recursion (the firmware's stack check refuses it): the AC inputs a
+ * request causes are performed directly. */
+#define ENTER_EV_BIT 0x80 /* set in SEnterEventCheck and LEnterEventCheck, clear in EnterAccessControl */
+RCX_STATIC_ASSERT(enter_ev_bit, (RCX_OP_SENTER_EVENT & RCX_OP_LENTER_EVENT & ENTER_EV_BIT) &&
+                  !(RCX_OP_ENTER_ACCESS & ENTER_EV_BIT));
+void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target)
 {
-    if (!mask) {
-        access_input(b, t, ACCESS_IN_EXIT_EV); /* SEND EXIT EV */
+    struct rcx_task *u;
+    u16 mask;
+    u8 resources = ins[1];
+
+    if (!(ins[0] & ENTER_EV_BIT)) {
+        if (granted(b, t, resources)) {
+            /* The other holders (of equal or lower priority) lose everything they hold, their motors brake (p. 98)
+             * and they take the AC input. This task's own resources go first, so that it is not one of them: it
+             * holds RES in their place. */
+            t->ev.rc = 0;
+            u = b->task;
+            do
+                if (u->ev.rc & resources) {
+                    outputs_revoked(b, u->ev.rc);
+                    access_input(b, u, ACCESS_IN_AC);
+                }
+            while (++u < b->task + RCX_TASKS);
+            t->ev.rc = resources;
+            t->ev.state = (u8)(ACCESS_AC | (t->ev.state & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
+        } else {
+            /* JUMP LBL (in the code object the task is in; the task runs this byte code, so it is not asleep in
+             * a Wait); in an access region SEND AC, whose JUMP AC goes to the same place: what remains of it is
+             * EXIT AC. */
+            t->pc = target;
+            if (!ACCESS_HAS_AC(t->ev.state))
+                return;
+            access_input(b, t, ACCESS_IN_EXIT_AC);
+        }
+        /* AC=LBL: after the IF OK, or before it in the states with an access region (neither JUMP nor EXIT AC reads
+         * it). */
+        t->ev.ac_pc = target;
+        t->ev.ac_sub = t->sub;
+        return;
+    }
+    /* ENTER EV: IF MON<>0 EV=LBL GO ..., ELSE SEND EXIT EV */
+    if ((mask = (u16)ops_source(b, t, ins)) == 0) {
+        access_input(b, t, ACCESS_IN_EXIT_EV);
         return;
     }
     t->ev.ev_pc = target;
     t->ev.ev_sub = t->sub;
     t->ev.mon = mask;
     t->ev.state = ACCESS_HAS_AC(t->ev.state) ? ACCESS_AC_EV : ACCESS_EV;
-}
-
-/* ENTER AC: RES, LBL. No recursion (the firmware's stack check refuses it): the AC inputs a request causes are
- * performed directly. */
-void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target)
-{
-    struct rcx_task *u;
-
-    if (granted(b, t, resources)) {
-        /* The other holders (of equal or lower priority) lose everything they hold, their motors brake (p. 98) and
-         * they take the AC input. This task's own resources go first, so that it is not one of them: it holds
-         * RES in their place. */
-        t->ev.rc = 0;
-        u = b->task;
-        do
-            if (u->ev.rc & resources) {
-                outputs_revoked(b, u->ev.rc);
-                access_input(b, u, ACCESS_IN_AC);
-            }
-        while (++u < b->task + RCX_TASKS);
-        t->ev.rc = resources;
-        t->ev.state = (u8)(ACCESS_AC | (t->ev.state & ACCESS_EV)); /* EV->AC when monitoring events, else AC */
-    } else {
-        /* JUMP LBL (in the code object the task is in); in an access region SEND AC, whose JUMP AC goes to the same
-         * place: what remains of it is EXIT AC. */
-        jump(b, t, target);
-        if (!ACCESS_HAS_AC(t->ev.state))
-            return;
-        access_input(b, t, ACCESS_IN_EXIT_AC);
-    }
-    /* AC=LBL: after the IF OK, or before it in the states with an access region (neither JUMP nor EXIT AC reads
-     * it). */
-    t->ev.ac_pc = target;
-    t->ev.ac_sub = t->sub;
 }

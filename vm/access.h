@@ -22,7 +22,7 @@ enum access_state {
 
 /* Inputs (columns) without operands. EV and AC come from the firmware, the others from the task's own byte codes.
  * The inputs with operands, ENTER EV (S/LEnterEventCheck: MON, LBL) and ENTER AC (EnterAccessControl: RES, LBL), are
- * events_monitor_enter() and access_enter() (vm/events.h). */
+ * access_enter() (vm/events.h), given the byte code. */
 enum access_input {
     ACCESS_IN_EV = 0,    /* a monitored event happened */
     ACCESS_IN_AC,        /* a task of equal or higher priority took some of RC */

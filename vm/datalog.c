@@ -50,11 +50,16 @@ s16 datalog_upload(const struct rcx *b, u16 start, u16 count, u8 *out)
 {
     /* Without a log, entry 0 still reports an empty one (and is the only entry there is to read). */
     static const u8 empty[3] = { 0xFF, 1, 0 };
-    u16 used = b->log_count ? b->log_count : 1;
+    const u8 *log = empty;
+    u16 used = 1;
 
+    if (b->log_count) {
+        used = b->log_count;
+        log = LOG_ADDR(b);
+    }
     if (count > (RCX_REPLY_MAX - 1) / 3 || start > used || count > used - start)
         return -1;
     count = (u16)(count * 3u);         /* in bytes */
-    memcpy(out, b->log_count ? LOG_ADDR(b) + start * 3u : empty, count);
+    memcpy(out, log + start * 3u, count);
     return (s16)count;
 }

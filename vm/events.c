@@ -61,7 +61,7 @@ static const s16 events_default[10][2] = {
 
 /* struct rcx_event.source is the KEY of the event's sensor, 0 for a cleared event: so an event is all zeros when it
  * has no sensor, as at power-on, before ClearAllEvents, when no input counts it yet. */
-#define KEY(sensor) ((u8)((sensor) + 1))
+#define KEY(sensor) EVENTS_KEY(sensor)
 
 /* Private flags of struct rcx_event. */
 #define F_BOOL 0x01     /* last boolean seen (inputs); the boolean is 0 or 1, so it is that bit */
@@ -69,29 +69,36 @@ static const s16 events_default[10][2] = {
 #define F_HIGH 0x04     /* ... and has reached HIGH since (set only with F_OUT) */
 #define F_FIRST 0x08    /* a click waits for a second one to make a double click (click.last_click) */
 
-/* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. */
-static u8 bit_of(u16 set, u8 n)
+/* Bit n of set (0 for n >= 16). A loop: the H8 shifts one bit per instruction. Always inline: a call in the loop of
+ * events_evaluate() would cost more than the loop, in the values kept across it. */
+static inline __attribute__((always_inline)) u8 bit_of(u16 set, u8 n)
 {
     while (n--)
         set >>= 1;
     return (u8)(set & 1u);
 }
 
-/* One more (d = 1) or one less (d = 0xFF) event watches sensor n: an input counts its own (and learns its number,
- * for the sensor engine's events_input()), sensor[0] those of the other sensors. Returns the input, or sensor[0]. */
-static struct rcx_sensor *watch(struct rcx *b, u8 n, u8 d)
+/* Event e starts (d = 1) or stops (d = 0xFF) watching its sensor (e->source, not 0): an input counts its own watchers
+ * (and learns its number, for the sensor engine's events_input()), sensor[0] those of the other sensors. The event
+ * takes the sensor's default thresholds and an input's boolean, from which edges are counted (no use when it stops:
+ * events_set() clears the event right after). */
+static void watch(struct rcx *b, struct rcx_event *e, u8 d)
 {
     struct rcx_sensor *s = b->sensor;
+    u8 n = (u8)(e->source - KEY(0)), row;
 
     if (n >= RCX_SENSORS) {
         s->others = (u8)(s->others + d);
+        row = virtual_row[n - RCX_SENSORS];
     } else {
         s += n;
         s->number = n;
         s->watched = (u8)(s->watched + d);
-        b->sensors_rest = 0;
+        row = (u8)(s->mode >> 5);
+        e->flags = s->boolean; /* F_BOOL */
     }
-    return s;
+    e->lower = events_default[row][0];
+    e->upper = events_default[row][1];
 }
 
 /* Spec p. 25: tasks monitoring events are not told. */
@@ -99,43 +106,42 @@ void events_clear_all(struct rcx *b)
 {
     u8 ev;
     for (ev = 0; ev < RCX_EVENTS; ev++)
-        events_set(b, ev, 0, RCX_EVENT_NONE);
+        events_set_packed(b, ev, RCX_EVENT_NONE);
 }
 
-void events_set(struct rcx *b, u8 ev, u8 source, u8 type)
+/* SetEvent: `st` is the source in its high byte, the type in its low byte (events_set(), vm/events.h). */
+#define SOURCE ((u8)(st >> 8))
+#define TYPE ((u8)st)
+void events_set_packed(struct rcx *b, u8 ev, u16 st)
 {
     struct rcx_event *e;
-    const struct rcx_sensor *in;
-    u8 row;
 
     /* 4-6, 13, 15 and above 16 are no event types; 16 clears the event. */
-    if (ev >= RCX_EVENTS || source > RCX_EVENT_SRC_LAST || (type != RCX_EVENT_NONE && !bit_of(VALID_TYPES, type)))
+    if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
         return;
     e = &b->event[ev];
+    b->sensors_rest = 0; /* an input may gain a watcher: its samples must be fed (vm/sensors.h) */
     if (e->source)
-        watch(b, (u8)(e->source - KEY(0)), 0xFF);
+        watch(b, e, 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
-    e->type = type;
+    e->type = TYPE;
     e->state = RCX_EVENT_STATE_UNDEFINED;
     e->duration = 15; /* 150 ms, the click default of p. 71 */
-    if (type == RCX_EVENT_NONE)
+    if (TYPE == RCX_EVENT_NONE)
         return;
-    e->source = KEY(source);
-    in = watch(b, source, 1);
-    if (source < RCX_SENSORS) {
-        row = (u8)(in->mode >> 5);
-        /* Edges are counted from here on, not from whatever the input did before. */
-        e->flags = in->boolean; /* F_BOOL */
-    } else {
-        row = virtual_row[source - RCX_SENSORS];
-    }
-    e->lower = events_default[row][0];
-    e->upper = events_default[row][1];
+    e->source = KEY(SOURCE);
+    watch(b, e, 1);
 }
+#undef SOURCE
+#undef TYPE
 
-void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
+/* CalibrateEvent (p. 74): ins[1] is the event, ins[2-4] its upper, lower and hysteresis factors. That is the order nqc
+ * encodes CalibrateEvent(event, lower, upper, hysteresis) in, and the one programs were written and run with; the
+ * spec's table lists lower first. */
+void events_calibrate(struct rcx *b, const u8 *ins)
 {
     struct rcx_event *e;
+    u8 ev = ins[1];
 
     if (ev >= RCX_EVENTS || !(e = &b->event[ev])->source)
         return; /* a cleared event has no sensor to measure */
@@ -144,16 +150,15 @@ void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst)
     e->u.cal.sum8 = 0;
     e->u.cal.raw_sum = 0;
     e->u.cal.rem = 0;
-    e->u.cal.pct[0] = lower;
-    e->u.cal.pct[1] = upper;
-    e->u.cal.pct[2] = hyst;
+    memcpy(e->u.cal.pct, ins + 2, sizeof e->u.cal.pct);
 }
 
-/* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply. */
+/* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply (the low byte's product first: gcc then
+ * needs no register saved). */
 static s16 fraction(s16 v, u8 f)
 {
-    u16 s = (u16)(v >> 15), m = (u16)(((u16)v ^ s) - s); /* s: 0, or all ones for a negative v */
-    m = (u16)((u16)(u8)(m >> 8) * f + (((u16)(u8)m * f) >> 8));
+    u16 s = (u16)(v >> 15), m = (u16)(((u16)v ^ s) - s);
+    m = (u16)((((u16)(u8)m * f) >> 8) + (u16)(u8)(m >> 8) * f);
     return (s16)((m ^ s) - s);
 }
 
@@ -180,6 +185,7 @@ static s16 add_sat(s16 a, s16 b)
  * raw-mode formula is lost from the spec (its page is missing) and taken to be the reflection one, since both work on
  * the same A/D scale. */
 #define RAW_COUNT_ONE 0x2000
+enum { PCT_UPPER, PCT_LOWER, PCT_HYST }; /* struct rcx_event_cal.pct: CalibrateEvent's operands in order */
 static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
@@ -198,13 +204,14 @@ static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s
             c->raw_sum = 0; /* boolean, transitions, periods, angle: no raw-scale mode */
     }
     /* No raw samples (a virtual sensor, or not a raw-scale mode): H = 0. Otherwise AvgRaw*HFct/2048 with AvgRaw the
-     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less. */
-    e->hysteresis = (s16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[2]) >> 6);
-    e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[1])), e->hysteresis);
+     * sum/8 rounded down: (8 AvgRaw)*HFct/256 then /64, the same, one shift less; that /64 as *4 then /256 (a byte
+     * move), since (8 AvgRaw)*HFct/256 is below 8 184. */
+    e->hysteresis = (u8)((u16)((u16)fraction((s16)(c->raw_sum & ~7u), c->pct[PCT_HYST]) << 2) >> 8);
+    e->upper = add_sat(add_sat(avg, fraction(avg, c->pct[PCT_UPPER])), e->hysteresis);
     /* Avg*LTFct/k1 lies between 0 and Avg, so only the hysteresis can take the lower threshold further. It is 0 but
      * in the raw-scale modes, whose values are -200 or more: with the 8th sample one of them, Avg is above -28 700
      * and H at most 127, so nothing to saturate. */
-    e->lower = (s16)(avg - fraction(avg, c->pct[0]) - e->hysteresis);
+    e->lower = (s16)(avg - fraction(avg, c->pct[PCT_LOWER]) - e->hysteresis);
     e->state = RCX_EVENT_STATE_UNDEFINED; /* the click flags went at CalibrateEvent: nothing to clear here */
 }
 
@@ -250,15 +257,15 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
  * the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
-    s16 h = e->hysteresis;
+    s16 h = 0;
 
-    if (e->state != RCX_EVENT_STATE_HIGH)
-        h = 0;
+    if (e->state == RCX_EVENT_STATE_HIGH)
+        h = e->hysteresis;
     if (value > add_sat(e->upper, (s16)-h))
         return RCX_EVENT_STATE_HIGH;
-    h = e->hysteresis;
-    if (e->state != RCX_EVENT_STATE_LOW)
-        h = 0;
+    h = 0;
+    if (e->state == RCX_EVENT_STATE_LOW)
+        h = e->hysteresis;
     if (value < add_sat(e->lower, h))
         return RCX_EVENT_STATE_LOW;
     return RCX_EVENT_STATE_NORMAL;
@@ -266,9 +273,9 @@ static u8 classify(const struct rcx_event *e, s16 value)
 
 /* Evaluate event e against its sensor's present value, for an evaluation of `only` (a KEY, or ANY: the timers, the
  * message and the counters). Only events_message_changed() asks for the message: a mailbox event happened. Returns
- * non-zero when the event fires. */
-#define ANY 0xFE /* above every KEY */
-static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
+ * the event types that happened (bit n: type n); the event fires when its own is one of them. */
+#define ANY EVENTS_ANY /* above every KEY */
+static u16 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
     const struct rcx_sensor *in = NULL;
     u8 s = (u8)(e->source - KEY(0)), to, from, bo;
@@ -293,17 +300,17 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
                                                   ? offsetof(struct rcx, timer) - 2u * RCX_EVENT_SRC_TIMER
                                                   : offsetof(struct rcx, global) - 2u * RCX_EVENT_SRC_COUNTER));
     }
-    if (e->state >= RCX_EVENT_STATE_CAL_START) {
+    from = e->state;
+    if (from >= RCX_EVENT_STATE_CAL_START) {
         calibrate_sample(in, e, value);
         return 0;
     }
     to = classify(e, value);
-    from = e->state;
     e->state = to;
     /* The first classification after SetEvent or a calibration is not a change of range. */
     if (to != from && from != RCX_EVENT_STATE_UNDEFINED)
         happened |= (u16)((u16)changed(b, e, from, to) << 8);
-    return happened && bit_of(happened, e->type);
+    return happened;
 }
 
 /* Evaluate the events watching the sensor whose KEY is `only` (ANY: any timer, the message or a counter) and tell the
@@ -311,16 +318,16 @@ static u8 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
  * sensors), so that the loop can stop at the last one; 0 when not known: all 16 are looked at. */
 RCX_STATIC_ASSERT(virtual_sensors_are_words, sizeof(((struct rcx *)0)->timer[0]) == 2 &&
                   sizeof(((struct rcx *)0)->global[0]) == 2);
-static void evaluate_set(struct rcx *b, u8 left, u8 only)
+void events_evaluate(struct rcx *b, u8 left, u8 only)
 {
     struct rcx_event *e = b->event;
-    u16 bit = 1, fired = 0;
+    u16 bit = 1, fired = 0, happened;
     u8 k;
 
     do {
         k = e->source;
-        if (only == ANY ? k > KEY(RCX_SENSORS - 1) : k == only) {
-            if (evaluate(b, e, only))
+        if (k == only || (only == ANY && k > KEY(RCX_SENSORS - 1))) {
+            if ((happened = evaluate(b, e, only)) != 0 && bit_of(happened, e->type))
                 fired += bit; /* bits of distinct events: no carries */
             if (!--left)
                 break;
@@ -345,47 +352,12 @@ void events_raise(struct rcx *b, u16 mask)
     while (++t < b->task + RCX_TASKS);
 }
 
-void events_counter_changed(struct rcx *b, u8 n)
-{
-    if (n < RCX_COUNTERS)
-        evaluate_set(b, 0, KEY(RCX_EVENT_SRC_COUNTER + n));
-}
-
-/* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
-void events_message_changed(struct rcx *b)
-{
-    evaluate_set(b, 0, KEY(RCX_EVENT_SRC_MESSAGE));
-}
-
 void events_input(struct rcx *b, u8 n)
 {
     const struct rcx_sensor *s;
 
     if (n < RCX_SENSORS) {
         s = b->sensor + n;
-        evaluate_set(b, s->watched, KEY(n));
+        events_evaluate(b, s->watched, KEY(n));
     }
-}
-
-/* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
- * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
- * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
- * timers have moved on and before the tasks the step wakes run). */
-void events_tick(struct rcx *b)
-{
-    if (b->sensor[0].others)
-        evaluate_set(b, b->sensor[0].others, ANY);
-}
-
-/* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on
- * p. 26 ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC
- * jumps to the region's label - back inside the subroutine, which is what the note wants to prevent - so
- * EXIT AC is sent instead. */
-void events_sub_returned(struct rcx *b, struct rcx_task *t)
-{
-    /* In a state without the region the input changes nothing (p. 107), so the labels alone decide. */
-    if (t->ev.ac_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_AC);
-    if (t->ev.ev_sub == t->sub)
-        access_input(b, t, ACCESS_IN_EXIT_EV);
 }

@@ -7,6 +7,7 @@
 #define RCX_EVENTS_H
 
 #include "rcx_types.h"
+#include "rcx_limits.h"
 #include "access.h"
 
 struct rcx;
@@ -59,7 +60,7 @@ struct rcx_event {
             s16 sum8;       /* of the values sampled so far, each divided by 8 (rem: the remainders) */
             u16 raw_sum;    /* of the raw samples (inputs only), and in its top 3 bits how many */
             u8 rem;
-            u8 pct[3];      /* CalibrateEvent operands: lower, upper, hysteresis factors */
+            u8 pct[3];      /* CalibrateEvent's operands: upper, lower, hysteresis factors */
         } cal;
     } u;
 };
@@ -78,22 +79,60 @@ struct rcx_task_events {
 
 void events_clear_all(struct rcx *b);                                 /* ClearAllEvents */
 static inline void events_init(struct rcx *b) { events_clear_all(b); } /* power-on: every event cleared */
-void events_set(struct rcx *b, u8 ev, u8 source, u8 type);           /* SetEvent, operands checked */
-void events_calibrate(struct rcx *b, u8 ev, u8 lower, u8 upper, u8 hyst); /* CalibrateEvent, byte order of p. 74 */
+/* SetEvent, operands checked. Source and type travel as the two bytes of one word: a fourth argument would go on the
+ * stack. */
+#define events_set(b, ev, source, type) events_set_packed(b, ev, (u16)((u16)(u8)(source) << 8 | (u8)(type)))
+void events_set_packed(struct rcx *b, u8 ev, u16 source_type);
+void events_calibrate(struct rcx *b, const u8 *ins);                  /* CalibrateEvent: its byte code */
 void events_raise(struct rcx *b, u16 mask);                           /* DirectEvent */
-void events_counter_changed(struct rcx *b, u8 n);
-void events_message_changed(struct rcx *b);
-void events_input(struct rcx *b, u8 n);      /* input n's processed value or boolean may have changed */
-void events_tick(struct rcx *b);             /* every 10 ms (vm_tick) */
 
-/* Monitoring and access control; `target` is the handler's pc in the task's current code object. The inputs without
+/* The engine looks at the events watching a sensor whenever that sensor may have changed: events_evaluate() takes the
+ * events whose sensor's KEY (its SetEvent number + 1) is `only`, or with EVENTS_ANY those of the timers, the message
+ * and the counters; `left` is how many there are, 0 when not known (vm/events.c). The notifications below are inline,
+ * so that each costs its caller one call. */
+#define EVENTS_KEY(sensor) ((u8)((sensor) + 1))
+#define EVENTS_ANY 0xFE /* above every KEY */
+void events_evaluate(struct rcx *b, u8 left, u8 only);
+static inline void events_counter_changed(struct rcx *b, u8 n)
+{
+    if (n < RCX_COUNTERS)
+        events_evaluate(b, 0, (u8)(EVENTS_KEY(RCX_EVENT_SRC_COUNTER) + n));
+}
+/* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
+static inline void events_message_changed(struct rcx *b) { events_evaluate(b, 0, EVENTS_KEY(RCX_EVENT_SRC_MESSAGE)); }
+void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean may have changed */
+/* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
+ * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
+ * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the
+ * timers have moved on and before the tasks the step wakes run), when an event watches one of them (sensor[0]
+ * counts those). A macro: struct rcx is not complete here. */
+#define events_tick(b)                                                          \
+    do {                                                                        \
+        if ((b)->sensor[0].others)                                              \
+            events_evaluate(b, (b)->sensor[0].others, EVENTS_ANY);              \
+    } while (0)
+
+/* Monitoring and access control. ENTER EV and ENTER AC are the byte code at ins (S/LEnterEventCheck or
+ * EnterAccessControl), `target` its label: the handler's pc in the task's current code object. The inputs without
  * operands are one call of the state machine (vm/access.h), made in place. */
-void events_monitor_enter(struct rcx *b, struct rcx_task *t, u16 mask, u16 target);
+void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target);
 static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
-void access_enter(struct rcx *b, struct rcx_task *t, u8 resources, u16 target);
 static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
-#define events_task_ended(b, t) ((void)(b), (t)->ev.rc = 0, (void)((t)->ev.state = ACCESS_NONE))
-void events_sub_returned(struct rcx *b, struct rcx_task *t); /* EndOfSub: leave regions entered in the sub */
+#define events_task_ended(b, t) ((void)(b), (void)(*(u16 *)(void *)&(t)->ev.rc = 0)) /* RC and state: one word */
+RCX_STATIC_ASSERT(rc_state_word, offsetof(struct rcx_task_events, rc) % 2 == 0 && ACCESS_NONE == 0 &&
+                  offsetof(struct rcx_task_events, state) == offsetof(struct rcx_task_events, rc) + 1);
+/* EndOfSub (p. 26, p. 107): regions entered inside the subroutine being left are exited, as the spec says on p. 26
+ * ("exits them ... releasing the resources"). The p. 107 note names the AC input for access regions, but AC jumps to
+ * the region's label - back inside the subroutine, which is what the note wants to prevent - so EXIT AC is sent
+ * instead. In a state without the region the input changes nothing (p. 107), so the labels alone decide. A macro,
+ * for struct rcx_task is not complete here; its one caller is in vm/interp.c. */
+#define events_sub_returned(b, t)                                      \
+    do {                                                               \
+        if ((t)->ev.ac_sub == (t)->sub)                                \
+            access_input(b, t, ACCESS_IN_EXIT_AC);                     \
+        if ((t)->ev.ev_sub == (t)->sub)                                \
+            access_input(b, t, ACCESS_IN_EXIT_EV);                     \
+    } while (0)
 
 #endif

@@ -68,7 +68,8 @@ static
 #endif
 __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at)
 {
-    u16 size = (u16)(at[1] - at[0]), pc = t->pc, to = 0; /* to: a distance's destination, OUTSIDE if not in 0..size */
+    u16 pc = t->pc, room = (u16)(at[1] - at[0] - pc), to = 0; /* room: bytes from the opcode to the end of the code;
+                                                                 * to: a distance's destination, OUTSIDE if beyond it */
     const u8 *ins;
 #if RCX_SWAN
     const struct rcx_swan_row *sw;
@@ -77,32 +78,37 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     s16 value;
     s16 *var;
 
-    if (pc >= size)                    /* the end of the code: as EndOfSub */
+    if ((s16)room <= 0)                /* the end of the code: as EndOfSub (offsets are below 0x8000) */
         goto end;
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
         len = rcx_swan_params(sw);
-        if ((u16)(size - pc) <= len)
+        if (room <= len)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
         swan_exec(b, t, ins, sw);
         return;
     }
 #endif
-    op = (u8)(ins[0] & ~RCX_TOGGLE);
+    op = ins[0];                       /* (the toggle bit changes neither the row nor the length) */
     flags = rcx_opflags[rcx_op_index(op)];
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
     if (!flags && len >= 6)
         len = (u8)(len - 6);
-    if ((u16)(size - pc) <= len)
+    if (room <= len)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
-
-    i = sizeof control;                /* the byte codes shared with direct commands are none of these */
-    if (!((flags ^ (RCX_PROGRAM << 3)) & (3 << 3))) /* program-only: bits 3-4 of the flags, in place */
-        for (i = 0; i < sizeof control && control[i] != op; i++)
-            ;
+    flags &= RCX_PROGRAM << 3 | RCX_DIRECT << 3; /* availability (bits 3-4), compared as a number */
+    if (flags < (RCX_PROGRAM << 3))
+        return;                        /* unknown and direct-only byte codes are skipped by their length (spec p. 5) */
+    if (flags != (RCX_PROGRAM << 3)) { /* shared with direct commands: none of the ones below */
+        ops_exec(b, t, ins);
+        return;
+    }
+    op = (u8)(ins[0] & ~RCX_TOGGLE);   /* read again: fewer values kept up to here */
+    for (i = 0; i < sizeof control && control[i] != op; i++)
+        ;
     if (i < C_END_OF_SUB) {
         /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
          * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
@@ -110,43 +116,41 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         u8 field = dist_at[i >> 1];
         const u8 *p = ins + field;
         u16 d = p[0];
-        pc = (u16)(pc + field);        /* from here: the offset the distance counts from */
         if (i & 1)
             d |= (u16)p[1] << 8;
-        if (i >= C_JUMP) {             /* sign-magnitude; the short form has nothing above bit 7 */
-            d = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
-            if (p[0] & 0x80)
-                d = (u16)(0u - d);
+        if (i >= C_JUMP) {             /* sign-magnitude (bit 7 of the first byte); the short form has nothing above */
+            u16 m = (u16)((d & 0x7F) | ((d >> 1) & 0x7F80));
+            d = d & 0x80 ? (u16)(0u - m) : m;
         } else if (i == C_CHECK_LOOP + 1 && (d & 0x8000)) {
             d = 0x8000u;
         }
-        to = (u16)(pc + d);
-        if (to > size)
+        to = (u16)(pc + field + d);    /* from the offset the distance counts from */
+        if (to > (u16)(pc + room))     /* the code's size */
             to = OUTSIDE;
     }
 
-    switch (i) {
-    case C_JUMP:
-    case C_JUMP + 1:
-        jump = 1;
-        break;
-    case C_DEC:
-    case C_DEC + 1:
-        if ((var = var_ref(b, t, ins[1])) != NULL) {
-            *var = (s16)(u16)((u16)*var - 1u);
-            jump = *var < 0;
-        }
-        break;
+    switch (i) {                       /* (in the order that lets most cases end with a short branch, as measured) */
     case C_ENTER:
     case C_ENTER + 1:
     case C_ACCESS:
         if ((s16)to < 0)
             goto stop;
-        if (i == C_ACCESS)
-            access_enter(b, t, ins[1], to);
-        else
-            events_monitor_enter(b, t, (u16)ops_source(b, t, ins), to);
+        access_enter(b, t, ins, to);
         break;
+    default:
+        ops_exec(b, t, ins);
+        break;
+    case C_CHECK_DO:
+    case C_CHECK_DO + 1: {
+        s16 a;
+        u8 holds, rel;
+        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
+        a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
+        holds = a < value ? 1 : a == value ? 2 : 4;
+        rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
+        jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
+        break;
+    }
     case C_CHECK_LOOP:
     case C_CHECK_LOOP + 1:
         if ((len = t->loop_depth) == 0)
@@ -158,28 +162,20 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             t->loop[len - 1]--;
         }
         break;
-    case C_CHECK_DO:
-    case C_CHECK_DO + 1: {
-        s16 a;
-        u8 holds = 4;
-        value = source_get(b, t, ins[2] & 0x3F, ins[5]);
-        a = source_get(b, t, ins[1] & 0x3F, RCX_LE16(ins + 3));
-        if (a < value)
-            holds = 1;
-        else if (a == value)
-            holds = 2;
-        op = ins[1];                   /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
-        jump = !(relation[(u8)((u8)(op << 2) | (u8)(op >> 6)) & 3] & holds);
+    case C_JUMP:
+    case C_JUMP + 1:
+        jump = 1;
         break;
-    }
     case C_END_OF_SUB:
     end:
         end_of_code(b, t);
         break;
-    default:
-        if (flags & (RCX_PROGRAM << 3)) /* availability: bits 3-4 */
-            ops_exec(b, t, ins);
-        /* Unknown and direct-only byte codes are skipped by their length (spec p. 5). */
+    case C_DEC:
+    case C_DEC + 1:
+        if ((var = var_ref(b, t, ins[1])) != NULL) {
+            *var = (s16)(u16)((u16)*var - 1u);
+            jump = *var < 0;
+        }
         break;
     }
 

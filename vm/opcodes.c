@@ -10,7 +10,11 @@ const u8 rcx_opflags[128] = {
 
 u8 rcx_op_params(u8 op)
 {
-    u8 f = rcx_opflags[rcx_op_index(op)];
-    /* Unknown opcodes are skipped by their nominal length (spec p. 5). */
-    return f ? (u8)(f & 7) : rcx_op_nominal_params(op);
+    u8 f = rcx_opflags[rcx_op_index(op)], n = (u8)(op & 7);
+
+    if (f)
+        return (u8)(f & 7);
+    if (n >= 6)
+        n -= 6;                        /* unknown opcodes: their nominal length (rcx_op_nominal_params(), spec p. 5) */
+    return n;
 }

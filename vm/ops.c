@@ -21,22 +21,34 @@ static
 s16 ops_arith(s16 a, s16 v, u8 kind)
 {
 #if RCX_SWAN
-    u16 n;
+    u8 n;
     s16 m = 0;                                   /* the variable, while a is a bit's mask */
 #endif
 
-    switch (kind) {
-    case ARITH_SET: return v;
+    switch (kind) {                              /* (the long cases first: the others reach the end by a short
+                                                  * branch; the order measured) */
 #if RCX_SWAN
-    case ARITH_NEG:
-#endif
-    negate:
-        a = 0;                                   /* -v = 0 - v */
+    /* Swan's (swan-target.md 4) */
+    default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
+        m = a;
+        a = 1;
+        goto shift;
+    case ARITH_SHR:
+        v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
         /* fall through */
-    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
-    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
-    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
-#if RCX_SWAN
+    case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
+    shift:
+        for (n = 16; v && n; n--)                /* |v| steps, 16 at most */
+            if (v < 0) {
+                a = (s16)(a >> 1);
+                v++;
+            } else {
+                a = (s16)(u16)((u16)a << 1);
+                v--;
+            }
+        if (kind < ARITH_BSET)
+            return a;
+        return (s16)(kind == ARITH_BSET ? m | a : m & ~a);
     case ARITH_MOD:
 #endif
     case ARITH_DIV:
@@ -50,7 +62,21 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
         }
         return (s16)(IS_MOD(kind) ? a % v : a / v); /* C99 truncates toward zero, as firm0328; % has the sign
                                                            * of the dividend */
+    case ARITH_MUL: return (s16)(u16)((unsigned)(u16)a * (unsigned)(u16)v);
+    case ARITH_SET: return v;
+#if RCX_SWAN
+    case ARITH_NEG:
+#endif
+    negate:
+        a = 0;                                   /* -v = 0 - v */
+        /* fall through */
+    case ARITH_SUB: return (s16)(u16)((u16)a - (u16)v);
+    case ARITH_SUM: return (s16)(u16)((u16)a + (u16)v);
     case ARITH_SGN: return (s16)(v > 0 ? 1 : v < 0 ? -1 : 0);
+#if RCX_SWAN
+    case ARITH_OR:   return (s16)(a | v);
+#endif
+    case ARITH_AND: return (s16)(a & v);
     case ARITH_ABS:
         if (v < 0) {
             v = (s16)(u16)(0u - (u16)v);
@@ -58,31 +84,11 @@ s16 ops_arith(s16 a, s16 v, u8 kind)
                 v = 32767;                       /* abs(-32768) */
         }
         return v;
-    case ARITH_AND: return (s16)(a & v);
 #if RCX_SWAN
-    case ARITH_OR:   return (s16)(a | v);
-    /* Swan's (swan-target.md 4) */
-    case ARITH_COMP:          return (s16)~v;
-    case ARITH_XOR:           return (s16)(a ^ v);
-    default:                                     /* ARITH_BSET, ARITH_BCLR: the mask 1 << v (bit 0-15; else 0) */
-        m = a;
-        a = 1;
-        goto shift;
-    case ARITH_SHR:
-        v = (s16)(u16)(0u - (u16)v);             /* a right shift is a left one by -v */
-        /* fall through */
-    case ARITH_SHL:                              /* one bit at a time: 16 or more leaves 0, or the sign going right */
-    shift:
-        n = v < 0 ? (u16)(0u - (u16)v) : (u16)v;
-        if (n > 16)
-            n = 16;
-        for (; n; n--)
-            a = v < 0 ? (s16)(a >> 1) : (s16)(u16)((u16)a << 1);
-        if (kind < ARITH_BSET)
-            return a;
-        return (s16)(kind == ARITH_BSET ? m | a : m & ~a);
+    case ARITH_COMP: return (s16)~v;
+    case ARITH_XOR:  return (s16)(a ^ v);
 #else
-    default:                  return (s16)(a | v);    /* RCX_OP_OR_VAR */
+    default:         return (s16)(a | v);        /* RCX_OP_OR_VAR */
 #endif
     }
 }
@@ -109,24 +115,33 @@ RCX_STATIC_ASSERT(motor_ops, !IS_DIRECTION(RCX_OP_ON_OFF_FLOAT) && !IS_GLOBAL(RC
                              IS_DIRECTION(RCX_OP_SET_GLOBAL_DIR) && IS_GLOBAL(RCX_OP_SET_GLOBAL_DIR) &&
                              !(OUTPUTS_GLOBAL & 0x07));
 
-static void set_motors(struct rcx *b, const u8 *ins)
+/* SetPower, SetMaxPower (0xA3: global): 0-7. Their low three bits (3) tell them from the four above (1 or 7). */
+RCX_STATIC_ASSERT(power_ops, (RCX_OP_SET_POWER & 7) == 3 && (RCX_OP_SET_MAX_POWER & 7) == 3
+                             && !(RCX_OP_SET_POWER & 0x80) && (RCX_OP_SET_MAX_POWER & 0x80)
+                             && (RCX_OP_ON_OFF_FLOAT & 7) != 3 && (RCX_OP_CONNECT_DISCONNECT & 7) != 3
+                             && (RCX_OP_SET_DIRECTION & 7) != 3 && (RCX_OP_SET_GLOBAL_DIR & 7) != 3);
+
+/* The six byte codes on a list of motors (bits 0-2 of the byte after the opcode): one call of outputs_update(). */
+static void set_motors(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
-    u8 op = ins[0], arg = ins[1], verb = (u8)(arg >> 6);
+    u8 low = (u8)(ins[0] & 7), global, verb;
+    u16 change;
+    s16 power;
 
-    if (IS_DIRECTION(op))
-        verb += 4;
-    outputs_update(b, (u8)((arg & 0x07) | (IS_GLOBAL(op) ? OUTPUTS_GLOBAL : 0)), verbs[verb]);
-}
-
-/* SetPower, SetMaxPower (0xA3: global): 0-7 */
-RCX_STATIC_ASSERT(power_ops, !(RCX_OP_SET_POWER & 0x80) && (RCX_OP_SET_MAX_POWER & 0x80));
-static void set_power(struct rcx *b, struct rcx_task *t, const u8 *ins)
-{
-    s16 power = ops_source8(b, t, ins + 1); /* the source one byte on */
-
-    if (power >= 0 && power <= 7)
-        outputs_update(b, (u8)((ins[1] & 0x07) | (ins[0] & 0x80 ? OUTPUTS_GLOBAL : 0)),
-                       OUTPUTS_CHANGE(RCX_MOTOR_POWER, power));
+    if (low == 3) {                    /* SetPower, SetMaxPower */
+        power = ops_source8(b, t, ins + 1); /* the source one byte on */
+        if ((u16)power > 7)
+            return;
+        change = OUTPUTS_CHANGE(RCX_MOTOR_POWER, power);
+        global = (u8)(ins[0] & 0x80);
+    } else {
+        verb = (u8)(ins[1] >> 6);
+        if (IS_DIRECTION(ins[0]))
+            verb += 4;
+        change = verbs[verb];
+        global = (u8)IS_GLOBAL(ins[0]);
+    }
+    outputs_update(b, (u8)((ins[1] & 0x07) | (global ? OUTPUTS_GLOBAL : 0)), change);
 }
 
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins)
@@ -175,18 +190,18 @@ void ops_set_message(struct rcx *b, u8 m)
 OP(op_clear_message) { UNUSED_T; UNUSED_INS; ops_set_message(b, 0); }
 OP(op_message)
 {
+    u8 m = ins[1];
 #if RCX_SWAN
     if (!t) /* received: a plain message has parameter 0 (swan-target.md 4), one after a B3 that one's */
-        b->msg_param = remote_message_received(b, ins[1]);
+        b->msg_param = remote_message_received(b, m);
 #else
     UNUSED_T;
 #endif
-    ops_set_message(b, ins[1]);
+    ops_set_message(b, m);
 }
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
 OP(op_clear_events) { UNUSED_T; UNUSED_INS; events_clear_all(b); }
-OP(op_motors) { UNUSED_T; set_motors(b, ins); }
 OP(op_tx_power)
 {
     UNUSED_T;
@@ -276,35 +291,36 @@ OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
 OP(op_calibrate)
 {
     UNUSED_T;
-    /* Upper factor first, as nqc encodes CalibrateEvent(event, lower, upper, hysteresis): the spec's table
-     * (p. 74) lists lower first, but nqc's order is the one programs were written and run with. */
-    events_calibrate(b, ins[1], ins[3], ins[2], ins[4]);
+    events_calibrate(b, ins); /* which reads the operands in nqc's order (vm/events.c) */
 }
 OP(op_set_source)
 {
     /* Source numbers use bits 0-5 of their byte (spec p. 86). */
-    source_set(b, t, (u8)(ins[1] & 0x3F), ins[2], source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4)));
+    s16 value = source_get(b, t, (u8)(ins[3] & 0x3F), RCX_LE16(ins + 4));
+
+    source_set(b, t, (u8)(ins[1] & 0x3F), ins[2], value);
 }
-OP(op_priority)
-{
-    if (t)
-        t->priority = ins[1];
-    (void)b;
-}
+/* SetPriority and SendPBMessage are program-only (vm_direct() runs none): t is a task. */
+OP(op_priority) { (void)b; t->priority = ins[1]; }
 /* Wait, and Swan's WaitMS (vm/swan.c): a task that waits costs nothing until vm_tick() wakes it. Waits run on the
  * 10 ms grid: Wait(1) resumes at the next 10 ms step; WaitMS on the millisecond. */
-RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2);
+RCX_STATIC_ASSERT(wait_flags, WAIT_10MS == 1 && WAIT_MS == 2 && RCX_SW_WAIT_MS == (RCX_OP_WAIT | 4)
+                              && !(RCX_OP_WAIT & 4));
 void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     s16 value = ops_source(b, t, ins);
 #if RCX_SWAN
-    u8 ms = ins[0] == RCX_SW_WAIT_MS;
+    u8 ms = (u8)((ins[0] >> 2) & 1); /* WaitMS 0x47, Wait 0x43 */
+    u16 now;
 #endif
 
     if (value <= 0)
         return;                        /* negative: ignored (spec p. 67); zero: no wait */
 #if RCX_SWAN
-    t->wake = (u16)((ms ? b->ms_now : b->ticks10) + (u16)value);
+    now = b->ticks10;
+    if (ms)
+        now = b->ms_now;
+    t->wake = (u16)(now + (u16)value);
     t->wait_ms = ms;
     b->waiting |= (u8)(ms + 1);        /* WAIT_MS or WAIT_10MS */
 #else
@@ -315,32 +331,32 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
 }
 OP(op_set_loop)
 {
-    s16 value;
+    u8 depth = t->loop_depth;
+    u16 value;
     /* A fifth level is ignored; counts outside 1-255 become 0 and exit at the first check (spec p. 57). */
-    if (t->loop_depth < RCX_LOOP_LEVELS) {
-        value = ops_source8(b, t, ins);
-        t->loop[t->loop_depth++] = (u8)((value >= 1 && value <= 255) ? value : 0);
+    if (depth < RCX_LOOP_LEVELS) {
+        value = (u16)ops_source8(b, t, ins);
+        t->loop[depth] = (u8)(value <= 255 ? value : 0); /* (a negative count too) */
+        t->loop_depth = (u8)(depth + 1);
     }
 }
 OP(op_gosub)
 {
-    if (ins[1] >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, ins[1])))
+    u8 sub = ins[1];
+
+    if (sub >= RCX_SUBS || !mem_obj_runnable(b, rcx_obj_sub(b->prog, sub)))
         return;                        /* calling an empty subroutine does nothing */
     /* One return address per task: a Gosub inside a subroutine overwrites it (spec p. 39). */
     t->has_ret = 1;
     t->ret_sub = t->sub;
     t->ret_pc = t->pc;
-    t->sub = ins[1];
+    t->sub = sub;
     t->pc = 0;
 }
 /* ExitEventCheck (0xB0), ExitAccessControl (0xA0): bit 4 tells them apart */
 RCX_STATIC_ASSERT(exit_ops, (RCX_OP_EXIT_EVENT & 0x10) && !(RCX_OP_EXIT_ACCESS & 0x10));
 OP(op_exit) { access_input(b, t, ins[0] & 0x10 ? ACCESS_IN_EXIT_EV : ACCESS_IN_EXIT_AC); }
-OP(op_send_message)
-{
-    if (t)
-        remote_send_message(b, (u8)ops_source8(b, t, ins));
-}
+OP(op_send_message) { remote_send_message(b, (u8)ops_source8(b, t, ins)); }
 
 /* Opcodes and their handlers, in two parallel arrays (3 bytes a row on the brick). */
 static const u8 op_codes[] = {
@@ -360,8 +376,8 @@ static op_fn *const op_fns[] = {
     ops_var, ops_var, ops_var, ops_var, ops_var, ops_var,
     ops_var, ops_var, ops_var, ops_wait,
     op_ping, op_stop_all, op_turn_off, op_clear_sound, op_clear_message, op_mute,
-    op_mute, op_clear_events, op_motors, op_motors, op_motors,
-    op_motors, set_power, set_power, op_tx_power, op_system_sound,
+    op_mute, op_clear_events, set_motors, set_motors, set_motors,
+    set_motors, set_motors, set_motors, op_tx_power, op_system_sound,
     op_tone, op_tone_var, op_start, op_stop, op_select,
     op_clear_timer, op_power_down, op_clear_sensor, op_counter, op_counter,
     op_counter, op_message, op_watch, op_sensor_type, op_sensor_mode,

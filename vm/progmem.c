@@ -38,14 +38,14 @@ u8 mem_resize(struct rcx *b, u8 obj, u16 size)
 
     if (size > old && delta > (u16)(RCX_ARENA_SIZE - end))
         return 0;                  /* growth needs the room */
+    end = (u16)(end - tail);       /* bytes after the object, up to the datalog's end */
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
-    if (size > old) {              /* the bytes gained are zero */
-        memmove(at + delta, at, (size_t)(end - tail));
+    /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
+     * than the arena (a shrinkage moves it down). */
+    memmove(at + (s16)delta, at, end);
+    if ((s16)delta > 0)            /* the bytes gained are zero */
         memset(at, 0, delta);
-    } else {
-        memmove(at - (u16)(old - size), at, (size_t)(end - tail));
-    }
     return 1;
 }
 
@@ -63,24 +63,27 @@ static u8 *put_word(u8 *p, u16 w)
 
 u8 mem_memmap(const struct rcx *b, u8 *out)
 {
-    u16 base = b->arena_addr;
-    u16 log = (u16)(base + CODE_END(b));
+    u16 base = b->arena_addr, log;
     const u16 *start = b->obj_start;
-    u8 run = RCX_SUBS, n;
+    u8 *other = out + RCX_PROGRAMS * RCX_SUBS * 2, left = RCX_SLOT_OBJS;
 
-    /* The subroutines of every slot (a run of 8 objects a slot), then the tasks (runs of 10 from object 8). */
-    for (;;) {
-        for (n = 0; n < run; n++)
-            out = put_word(out, (u16)(base + start[n]));
-        start += RCX_SLOT_OBJS;
-        if (start >= &b->obj_start[RCX_OBJS]) {
-            if (run == RCX_TASKS)
-                break;
-            start = &b->obj_start[RCX_SUBS];
-            run = RCX_TASKS;
+    /* The subroutines of every slot, then the tasks: the objects in arena order, a slot's 8 subroutines to the first
+     * part of the map and its 10 tasks to the second; `other` is where the part not being written goes on. */
+    do {
+        u16 w = (u16)(base + *start++);
+        out[0] = (u8)(w >> 8); /* the memory map is the one big-endian reply (spec p. 13) */
+        out[1] = (u8)w;
+        out += 2;
+        if (--left == RCX_TASKS || left == 0) { /* from the subroutines to the tasks, or back at the next slot */
+            u8 *p = other;
+            other = out;
+            out = p;
+            if (left == 0)
+                left = RCX_SLOT_OBJS;
         }
-    }
-    out = put_word(out, log);
+    } while (start < &b->obj_start[RCX_OBJS]);
+    log = (u16)(base + *start);
+    out = put_word(other, log);        /* (the end of the tasks' part) */
     out = put_word(out, (u16)(log + b->log_count * 3u));
     out = put_word(out, (u16)(log + LOG_BYTES(b)));
     /* firm0328 hosts compute free memory as word 93 - word 92, so 93 is the end of the arena, not its last byte. */

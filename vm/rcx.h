@@ -142,8 +142,8 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *reply);
 
 /* Tasks and programs (vm/sched.c). */
 void sched_start_task(struct rcx *b, u8 n);
-void sched_stop_task(struct rcx *b, u8 n);
-void sched_stop(struct rcx *b, struct rcx_task *t); /* the same for a task by its address */
+struct rcx_task *sched_stop_task(struct rcx *b, u8 n); /* task n (NULL: there is none) */
+struct rcx_task *sched_stop(struct rcx *b, struct rcx_task *t); /* the same for a task by its address; t */
 void sched_set_state(struct rcx *b, struct rcx_task *t, u8 state); /* and t's bit of runmask: set only when RUNNING */
 void sched_stop_all(struct rcx *b);
 void sched_select_program(struct rcx *b, u8 prog, u8 from_program);

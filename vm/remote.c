@@ -12,10 +12,9 @@
 
 RCX_STATIC_ASSERT(uartconf_is_hal_mode, HAL_IR_4800 == 1 && HAL_IR_76KHZ == 2 && HAL_IR_DUTY25 == 4);
 
-/* Index of the lowest set bit of a non-zero byte. */
-static u8 lowest_bit(u8 v)
+/* n + the index of the lowest set bit of a non-zero byte. */
+static u8 lowest_bit(u8 v, u8 n)
 {
-    u8 n = 0;
     while (!(v & 1u)) {
         v >>= 1;
         n++;
@@ -40,13 +39,13 @@ void remote_command(struct rcx *b, u16 bits)
     if (pressed & REMOTE_PROGRAMS) {
         /* "prgm N, start 0" (spec p. 98): motors brake, the slot is selected and its task 0 started. */
         outputs_program_stop(b);
-        sched_select_program(b, (u8)(lowest_bit((u8)(pressed & REMOTE_PROGRAMS)) - 1), 1);
+        sched_select_program(b, lowest_bit((u8)(pressed & REMOTE_PROGRAMS), (u8)-1), 1); /* bit 1: slot 0 */
     }
     if (pressed & REMOTE_SOUND)
         sound_system(b, REMOTE_SYSTEM_SOUND);
     if ((u8)(pressed >> 8) & (u8)(REMOTE_MESSAGES >> 8)) {
         /* As InternMessage would: PB message 1-3. */
-        ops_set_message(b, (u8)(lowest_bit((u8)(pressed >> 8)) + 1));
+        ops_set_message(b, lowest_bit((u8)(pressed >> 8), 1));
     }
 }
 

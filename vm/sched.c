@@ -13,8 +13,7 @@ void sched_start_task(struct rcx *b, u8 n)
 
     if (n >= RCX_TASKS || !mem_obj_runnable(b, rcx_obj_task(b->prog, n)))
         return; /* an empty (or half-downloaded) task slot is not started */
-    sched_stop_task(b, n); /* a running task is restarted from the top */
-    t = &b->task[n];
+    t = sched_stop_task(b, n); /* a running task is restarted from the top */
     t->sub = RCX_NO_SUB;
     t->pc = 0;
     t->has_ret = 0;
@@ -29,18 +28,18 @@ void sched_start_task(struct rcx *b, u8 n)
     sched_set_state(b, t, RCX_TASK_RUNNING);
 }
 
-void sched_stop(struct rcx *b, struct rcx_task *t)
+struct rcx_task *sched_stop(struct rcx *b, struct rcx_task *t)
 {
-    if (t->state == RCX_TASK_IDLE)
-        return;
-    sched_set_state(b, t, RCX_TASK_IDLE);
-    events_task_ended(b, t);
+    if (t->state != RCX_TASK_IDLE) {
+        sched_set_state(b, t, RCX_TASK_IDLE);
+        events_task_ended(b, t);
+    }
+    return t;
 }
 
-void sched_stop_task(struct rcx *b, u8 n)
+struct rcx_task *sched_stop_task(struct rcx *b, u8 n)
 {
-    if (n < RCX_TASKS)
-        sched_stop(b, &b->task[n]);
+    return n < RCX_TASKS ? sched_stop(b, &b->task[n]) : NULL;
 }
 
 /* One place keeps runmask in step with the states (a shift by a variable count is a loop on the H8/300: written

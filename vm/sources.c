@@ -13,19 +13,21 @@
 struct source_row {
     u16 offset;     /* of the field for index 0 */
     u8 shape;       /* bits 0-4 stride between indices, SHAPE_WORD, SHAPE_STORE, SHAPE_FIELD */
-    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value), LIMIT_EXISTS, LIMIT_WRITABLE */
+    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value; UP_TO_255), LIMIT_EXISTS, LIMIT_WRITABLE */
 };
 #define SHAPE_WORD 0x20     /* a 16-bit field, else 8-bit unsigned */
 #define SHAPE_STORE 0x40    /* a write stores any value as it is (message and counters then tell the events) */
 #define SHAPE_FIELD 0x80    /* read straight from the field (without it, the place serves writes only) */
 #define LIMIT_EXISTS 0x40
 #define LIMIT_WRITABLE 0x80
-RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
+RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F); /* (and no source's highest index is 62: UP_TO_255) */
+RCX_STATIC_ASSERT(rows_37_44, RCX_SOURCE_COUNT == (RCX_SWAN ? RCX_SRC_GLOBAL_IND + 1 : RCX_SRC_INDIRECT + 1));
 
 #define R LIMIT_EXISTS
 #define RW (LIMIT_EXISTS | LIMIT_WRITABLE)
 #define SW LIMIT_WRITABLE /* exists only for a Swan program's tasks (row(): swan) */
-#define VAR_MAX (RCX_SWAN ? RCX_ANY : 47) /* sources 0 and 36: 0-255 for Swan's programs (var_ref() decides) */
+#define UP_TO_255 0x3E /* highest index 255: the variables of Swan's build (var_ref() decides further) */
+#define VAR_MAX (RCX_SWAN ? UP_TO_255 : 47) /* sources 0 and 36 (and 43-44, which have their row) */
 #define STORE SHAPE_STORE
 #define RCX_MEMBER(m) (((struct rcx *)0)->m)
 #define COMPUTED 0, 0
@@ -34,57 +36,47 @@ RCX_STATIC_ASSERT(any_fits_limits, RCX_ANY == 0x3F);
     (u8)(sizeof RCX_MEMBER(elem) | (sizeof RCX_MEMBER(field) == 2 ? SHAPE_WORD : 0) | (store))
 #define FIELD(field, elem, store) PLACE(field, elem, (store) | SHAPE_FIELD)
 
-/* After the sources, Swan's message parameter, source 15 index 1: a word beside the message, a row of its own (stride
- * 0: index 1 is the field itself), which row() gives for that index. */
-#define MSG_PARAM_ROW RCX_SOURCE_COUNT
-static const struct source_row rows[RCX_SOURCE_COUNT + RCX_SWAN] = {
+/* Rows 0-36. Sources 37-44 (Swan's build) are computed and take any index, as Constant (37-42, read-only) and
+ * Variable (43-44, writable) do: row() gives those rows for them. After the rows, Swan's message parameter, source 15
+ * index 1: a word beside the message, a row of its own (stride 0: index 1 is the field itself), which row() gives
+ * for that index. */
+#define ROWS (RCX_SRC_INDIRECT + 1)
+#define MSG_PARAM_ROW ROWS
+static const struct source_row rows[ROWS + RCX_SWAN] = {
+#define RCX_SRC_ROWS /* (sources.def: no rows for 37-44) */
 #define RCX_SRC(num, id, name, max, access, place) [num] = { place, (u8)((max) | (access)) },
 #include "sources.def"
 #undef RCX_SRC
+#undef RCX_SRC_ROWS
 #if RCX_SWAN
     [MSG_PARAM_ROW] = { (u16)offsetof(struct rcx, msg_param), SHAPE_WORD | SHAPE_STORE | SHAPE_FIELD, 1 | SW },
 #endif
 };
 
-/* The row of a source whose index is in range and whose access allows `need`; NULL otherwise. For the task of a Swan
- * program (ASK_SWAN) Swan's sources (SW) exist too. */
-#define ASK_SWAN 0x01 /* in `need`: the asker is a Swan program's task (rcx.swan's 1) */
-static const struct source_row *row(u8 src, u16 index, u8 need)
+/* The row of a source that exists for the asker (task t; NULL: a host) at an index in range; NULL otherwise. For the
+ * task of a Swan program (rcx.swan: decided when its download completed) Swan's sources (SW) exist too. A write needs
+ * LIMIT_WRITABLE besides. */
+static const struct source_row *row(const struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
 {
     const struct source_row *r;
     u8 max, limits;
     if (src >= RCX_SOURCE_COUNT)
         return NULL;
 #if RCX_SWAN
-    if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
+    if (src >= ROWS)
+        src = src >= RCX_SRC_GLOBAL ? RCX_SRC_VAR : RCX_SRC_CONST;
+    else if (src == RCX_SRC_MESSAGE && index) /* (its row's limit is 1) */
         src = MSG_PARAM_ROW;
 #endif
     r = &rows[src];
     limits = r->limits;
-    if (RCX_SWAN && (need & ASK_SWAN)) {
-        need &= (u8)~ASK_SWAN;
-        if (limits & LIMIT_WRITABLE)
-            limits |= LIMIT_EXISTS;
-    }
+    if (!(limits & LIMIT_EXISTS) && !(RCX_SWAN && (limits & LIMIT_WRITABLE) && t && b->swan[b->prog]))
+        return NULL;
     max = (u8)(limits & RCX_ANY);
-    if ((limits & need) != need || (max != RCX_ANY && index > max))
+    if (max != RCX_ANY && index > (max == UP_TO_255 ? 0xFFu : max))
         return NULL;
     return r;
 }
-
-/* `need` for row(), and ASK_SWAN when the asker is a task of a Swan program (rcx.swan: decided when its download
- * completed). */
-#if RCX_SWAN
-RCX_STATIC_ASSERT(ask_swan, ASK_SWAN == 1); /* rcx.swan holds 0 or 1 (vm/swan.c) */
-static u8 asker(const struct rcx *b, const struct rcx_task *t, u8 need)
-{
-    if (t)
-        need |= b->swan[b->prog];      /* (0 or 1: ASK_SWAN) */
-    return need;
-}
-#else
-#define asker(b, t, need) (need)
-#endif
 
 /* The field of a plain source at an index already checked (<= 47). Both factors are byte variables so that gcc
  * multiplies with one mulxu instead of calling __mulhi3; inlined, it leaves source_get() a register to spare. */
@@ -127,14 +119,17 @@ static u16 next_random(struct rcx *b)
 static s16 *var_of(struct rcx *b, const struct rcx_task *t, u16 src_index)
 {
     u8 src = (u8)(src_index >> 8);
-    s16 *v;
+    u16 n = (u8)src_index;
 
     if (RCX_SWAN && src >= RCX_SRC_GLOBAL)
         t = b->task;                   /* any task: 48-255 are the globals; 32-47 of task 0 too (local_base 0) */
-    v = var_ref(b, t, (u8)src_index);
-    if (v && (src == RCX_SRC_INDIRECT || (RCX_SWAN && src == RCX_SRC_GLOBAL_IND)))
-        v = var_ref(b, t, (u16)*v);
-    return v;
+    if (src == RCX_SRC_INDIRECT || (RCX_SWAN && src == RCX_SRC_GLOBAL_IND)) {
+        const s16 *v = var_ref(b, t, n);
+        if (!v)
+            return NULL;
+        n = (u16)*v;
+    }
+    return var_ref(b, t, n);
 }
 #define IS_VARIABLE(src) ((src) == RCX_SRC_VAR || (src) == RCX_SRC_INDIRECT || (RCX_SWAN && (src) >= RCX_SRC_GLOBAL))
 RCX_STATIC_ASSERT(event_fields, offsetof(struct rcx_event, source) == 0 && offsetof(struct rcx_event, type) == 1);
@@ -191,17 +186,16 @@ static s16 system_live(struct rcx *b, const struct rcx_task *t, u8 i)
 static const u8 motor_bit[RCX_MOTORS] = { 1, 2, 4 }; /* 1 << motor, without a shift loop */
 static void swan_power(struct rcx *b, u8 src, u8 motor, s16 value)
 {
-    u8 p = 127;                        /* the end of the scale */
+    u16 m = (u16)value;                /* the magnitude */
+    u8 p;
     u16 change;
 
     if (value < 0) {
         if (src != RCX_SRC_POWER_SIGNED)
             return;
-        if (value > -127)
-            p = (u8)-value;
-    } else if (value < 127) {
-        p = (u8)value;
+        m = (u16)(0u - m);
     }
+    p = m < 127 ? (u8)m : 127;         /* (else the end of the scale) */
     if (src != RCX_SRC_POWER8)
         p = (u8)((u16)(p * 57u + 454u) >> 10); /* = (p x 7 + 63) / 127 for every p 0-127: no division helper */
     else if (p > 7)
@@ -242,8 +236,10 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
         return (s16)index;
     if ((src == RCX_SRC_VAR && index < RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_GLOBAL && index < RCX_ALL_GLOBALS))
         return b->global[index];
-    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS))) == NULL)
+    if ((r = row(b, t, src, index)) == NULL)
         return 0;
+    p = field(b, r, index);            /* (a computed source's row may name a field too) */
+    /* The computed sources, in the order that gave the shortest code (the variables before 37-42). */
 #if RCX_SWAN
     if (src == RCX_SRC_SYSTEM) {
         s16 live = system_live(b, t, (u8)index);
@@ -251,13 +247,22 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
             return live;
     }
 #endif
-    p = field(b, r, index);            /* (a computed source's row may name a field too) */
     if (r->shape & SHAPE_FIELD)
         return (r->shape & SHAPE_WORD) ? *(const s16 *)(const void *)p : (s16)*p;
     if (IS_VARIABLE(src)) {
-        v = !RCX_SWAN || index < RCX_ALL_GLOBALS ? var_of(b, t, (u16)(src << 8 | index)) : NULL; /* rows: <= 47 */
+        v = var_of(b, t, (u16)(src << 8 | index)); /* (rows: index below 256) */
         return v ? *v : 0;
     }
+    if (src == RCX_SRC_RANDOM) {
+        /* 0..index inclusive; a range below 1 gives 0. */
+        if ((s16)index <= 0)
+            return 0;
+        return (s16)(next_random(b) % (u16)(index + 1));
+    }
+    if (src == RCX_SRC_GLOBAL_MOTOR)
+        return outputs_global_status(b, (u8)index);
+    if (src == RCX_SRC_MOTOR)
+        return outputs_status(b, (u8)index);
 #if RCX_SWAN
     if (src >= RCX_SRC_LOG_TYPE_IND) {
         if (src & 1) {                 /* (n from variable n) */
@@ -268,19 +273,7 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
     }
     if (src == RCX_SRC_MS_TIMER)       /* the field is the base */
         return (s16)((u16)(b->ms_now - *(const u16 *)(const void *)p) & 0x7FFF);
-    if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
-        return *p ? (s16)(*p - 1) : 16;
 #endif
-    if (src == RCX_SRC_MOTOR)
-        return outputs_status(b, (u8)index);
-    if (src == RCX_SRC_GLOBAL_MOTOR)
-        return outputs_global_status(b, (u8)index);
-    if (src == RCX_SRC_RANDOM) {
-        /* 0..index inclusive; a range below 1 gives 0. */
-        if ((s16)index <= 0)
-            return 0;
-        return (s16)(next_random(b) % (u16)(index + 1));
-    }
     if (src == RCX_SRC_TASK_EVENTS) {
         u8 i = (u8)index, size = sizeof *t; /* two byte variables: one mulxu; b->task[index] calls __mulhi3 */
 
@@ -288,6 +281,10 @@ s16 source_get(struct rcx *b, const struct rcx_task *t, u8 src, u16 index)
             return t ? (s16)t->ev.events : 0;
         return (s16)((const struct rcx_task *)((const u8 *)b->task + (u16)(i * size)))->ev.events;
     }
+#if RCX_SWAN
+    if (src == RCX_SRC_EVENT_SRC)      /* EST_*; 16 (EST_SENSOR_UNUSED) when the event is cleared */
+        return *p ? (s16)(*p - 1) : 16;
+#endif
     if (src == RCX_SRC_TIMER10)
         /* 10 x the 100 ms count plus the 10 ms steps into the current 100 ms tick (reference-firmware.md). */
         return (s16)((u16)(*(const u16 *)(const void *)p * 10u + b->step10) & 0x7FFF);
@@ -302,7 +299,7 @@ s16 source_poll(struct rcx *b, const u8 *cmd)
 
     /* 0: 0-31; 36: 0-47 (32-47 read 0 from a host), as firm0328 answers (the rows allow more for a Swan task) */
     if ((src == RCX_SRC_VAR && index >= RCX_GLOBALS) || (RCX_SWAN && src == RCX_SRC_INDIRECT && index >= RCX_VARS)
-        || !row(src, index, LIMIT_EXISTS))
+        || !row(b, NULL, src, index))
         return (s16)-32768;
     return source_get(b, NULL, src, index);
 }
@@ -317,17 +314,17 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
     s16 *v;
     u8 *p;
 
-    if ((r = row(src, index, asker(b, t, LIMIT_EXISTS | LIMIT_WRITABLE))) == NULL)
+    if ((r = row(b, t, src, index)) == NULL || !(r->limits & LIMIT_WRITABLE))
         return;
     /* Tested one by one: a switch here costs a 74-byte jump table. */
-    if (IS_VARIABLE(src)) {
-        if ((!RCX_SWAN || index < RCX_ALL_GLOBALS) && (v = var_of(b, t, (u16)(src << 8 | index))) != NULL)
-            *v = value;
-        return;
-    }
     if (src == RCX_SRC_RANDOM) {
         if (index == 0) /* writing random 0 seeds the generator */
             b->random = (u16)value ? (u16)value : 0xACE1;
+        return;
+    }
+    if (IS_VARIABLE(src)) {
+        if ((v = var_of(b, t, (u16)(src << 8 | index))) != NULL) /* (rows: index below 256) */
+            *v = value;
         return;
     }
 #if RCX_SWAN
@@ -335,53 +332,48 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
         swan_power(b, src, (u8)index, value); /* (then stored: read back as written) */
 #endif
     /* Thresholds, click counter, UART buffer, message and counters (SHAPE_STORE) take any value; the rest none
-     * below 0. */
+     * below 0, and those of a byte (program, sensor type and mode, event type and source) none above 255. Then each
+     * source in turn, in the order that gives the shortest code. */
     if (!(r->shape & SHAPE_STORE)) {
-        if (value < 0)
+        if (value < 0 || (!(r->shape & SHAPE_WORD) && value > 0xFF))
             return;
         if (src == RCX_SRC_PROGRAM) {
             if (value < RCX_PROGRAMS)
                 sched_select_program(b, (u8)value, t != NULL);
             return;
         }
-        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
-            if (value <= 0xFF) {
-                if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
-                    sensor_set_type(b, (u8)index, (u8)value);
-                else
-                    sensor_set_mode(b, (u8)index, (u8)value);
-            }
-            return;
-        }
-        if (src == RCX_SRC_TIMER10)
-            value = (s16)((u16)value / 10u);
-#if RCX_SWAN
-        if (src == RCX_SRC_MS_TIMER)   /* its field is the base it counts from */
-            value = (s16)(b->ms_now - (u16)value);
-#endif
         if (src == RCX_SRC_WATCH) {
             if (value >= 24 * 60)
                 return;
             b->watch_ms = 0;
         }
-        /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
-        if (src == RCX_SRC_DURATION && value < 5)
+        if (src == RCX_SRC_SENSOR_TYPE || src == RCX_SRC_SENSOR_MODE) {
+            if (src == RCX_SRC_SENSOR_TYPE) /* two calls: tests/firmware/check_stack.sh follows no pointer */
+                sensor_set_type(b, (u8)index, (u8)value);
+            else
+                sensor_set_mode(b, (u8)index, (u8)value);
             return;
+        }
 #if RCX_SWAN
+        if (src == RCX_SRC_MS_TIMER)   /* its field is the base it counts from */
+            value = (s16)(b->ms_now - (u16)value);
         if (src == RCX_SRC_EVENT_TYPE || src == RCX_SRC_EVENT_SRC) {
             /* SetEvent with the other of the two as it is; the rows' fields are event[index].type and .source */
             const struct rcx_event *e = &b->event[(u8)index];
             u8 k = e->source ? (u8)(e->source - 1) : 0, type = e->type;
-            if (value > 0xFF)              /* (not below 0 here) events_set() checks the rest */
-                return;
             if (src == RCX_SRC_EVENT_SRC)
                 k = (u8)value;
             else
                 type = (u8)value;
-            events_set(b, (u8)index, k, type);
+            events_set(b, (u8)index, k, type); /* (it checks the rest) */
             return;
         }
 #endif
+        /* A duration is 50 ms - 327 s (5-32767); timers and hysteresis "must be non-negative". */
+        if (src == RCX_SRC_DURATION && value < 5)
+            return;
+        if (src == RCX_SRC_TIMER10)
+            value = (s16)((u16)value / 10u);
     }
     p = field(b, r, index);
     if (r->shape & SHAPE_WORD)

@@ -55,19 +55,23 @@ static void stack(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 /* Messages with a parameter: A2 m k8, B3 m k16, C3/C4 T v8 T v16 (send, set) */
 static void message(struct rcx *b, struct rcx_task *t, const u8 *ins, u8 kind)
 {
-    u8 m = ins[1];
-    s16 v = kind == SW_MSG_BYTE ? (s16)ins[2] : (s16)RCX_LE16(ins + 2);
+    s16 m, v;                          /* (the message: its low byte) */
 
     if (kind >= SW_SEND_PARAM) {
-        m = (u8)ops_source8(b, t, ins);
+        m = ops_source8(b, t, ins);
         v = ops_source(b, t, ins + 2);
         if (kind == SW_SEND_PARAM) {
-            remote_send_message_param(b, m, v);
+            remote_send_message_param(b, (u8)m, v);
             return;
         }
+    } else {
+        m = ins[1];
+        v = ins[2];
+        if (kind != SW_MSG_BYTE)
+            v = (s16)RCX_LE16(ins + 2);
     }
     b->msg_param = v;                  /* first, so that the events the message raises find it */
-    ops_set_message(b, m);
+    ops_set_message(b, (u8)m);
 }
 
 void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r)
@@ -93,14 +97,14 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
         *g = ops_arith(*g, v, ins[0] & 0x40 ? arith_of[ins[0] & 7] : ARITH_SET); /* 0x2B-0x2D: = */
         return;
     }
-    if (kind == SW_WAIT_MS)
-        ops_wait(b, t, ins);
+    if (kind >= SW_MSG_BYTE)
+        message(b, t, ins, kind);
     else if (kind == SW_CLEAR_ALL)
         clear_all(b, ins[1]);
-    else if (kind <= SW_POP)
+    else if (kind >= SW_PUSH)
         stack(b, t, ins, kind);
     else
-        message(b, t, ins, kind);
+        ops_wait(b, t, ins);           /* SW_WAIT_MS */
 }
 
 /*
@@ -110,31 +114,34 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
  */
 RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
-/* 1 when the code of a slot (its objects start at `at`) has a Swan opcode, or SCheckDo/LCheckDo (toggle bit or not)
- * with source 43 or 44; each object is walked from its start, instruction by instruction. */
-static u8 swan_code(const u8 *arena, const u16 *at)
+/* 1 when the code of one object (its entry in obj_start at `at`) has a Swan opcode, or SCheckDo/LCheckDo (toggle bit or
+ * not) with source 43 or 44, walked from its start instruction by instruction. Out of line: the walk keeps its values
+ * in registers, and so does the loop over a slot's objects. */
+static __attribute__((noinline)) u8 swan_object(const u8 *arena, const u16 *at)
 {
-    const u16 *last = at + RCX_SLOT_OBJS;
-    const u8 *p, *end;
+    const u8 *p = arena + at[0], *end = arena + at[1];
     u8 op, check;
 
-    for (; at != last; at++)
-        for (p = arena + at[0], end = arena + at[1]; p < end; p += 1 + rcx_op_params(op)) { /* toggle bit folded */
-            op = *p;
-            if (rcx_swan_find(op))
-                return 1;
-            check = (u8)(op & 0xE7);
-            if (check == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
-                return 1;
-        }
+    for (; p < end; p += 1 + rcx_op_params(op)) { /* toggle bit folded */
+        op = *p;
+        if (rcx_swan_find(op))
+            return 1;
+        check = (u8)(op & 0xE7);
+        if (check == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
+            return 1;
+    }
     return 0;
 }
 
 void swan_download_done(struct rcx *b)
 {
-    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS); /* one divxu */
+    const u16 *at = &b->obj_start[(u8)(b->dl.obj / RCX_SLOT_OBJS * RCX_SLOT_OBJS)]; /* the slot's first object */
+    u8 n;
 
     mem_resize(b, b->dl.obj, b->dl.filled);
-    b->swan[slot] = swan_code(b->arena, &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]);
+    /* A Swan program: one of its objects has Swan code (each walked from its start). */
+    for (n = RCX_SLOT_OBJS; n && !swan_object(b->arena, at); n--)
+        at++;
+    b->swan[(u8)(b->dl.obj / RCX_SLOT_OBJS)] = n != 0;
 }
 #endif

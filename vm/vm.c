@@ -23,7 +23,10 @@ static void wake_waiting(struct rcx *b)
         struct rcx_task *t = &b->task[n];
         if (t->state == RCX_TASK_WAITING) {
 #if RCX_SWAN
-            if ((s16)(u16)((t->wait_ms ? b->ms_now : b->ticks10) - t->wake) >= 0) {
+            u16 now = b->ticks10;
+            if (t->wait_ms)
+                now = b->ms_now;
+            if ((s16)(u16)(now - t->wake) >= 0) {
                 sched_set_state(b, t, RCX_TASK_RUNNING);
             } else {
                 still |= (u8)(t->wait_ms + 1); /* WAIT_MS or WAIT_10MS */
@@ -42,7 +45,7 @@ static void wake_waiting(struct rcx *b)
 
 void vm_tick(struct rcx *b)
 {
-    u8 i;
+    u8 i, wake = 0;
 
     /* Engines with nothing in progress are not called: each would only find that out. No reversing pause; no note
      * and none queued (a sound is only ever started with a note's length, so none is sounding either). */
@@ -57,15 +60,17 @@ void vm_tick(struct rcx *b)
     }
 #if RCX_SWAN
     b->ms_now++;
-    if (b->waiting & WAIT_MS)
-        wake_waiting(b);
+    wake = (u8)(b->waiting & WAIT_MS);
 #endif
-    if (++b->ms < 10)
-        return;
-    b->ms = 0;
-    b->ticks10++;
-    if (b->waiting)
+    if (++b->ms >= 10) {
+        b->ms = 0;
+        b->ticks10++;
+        wake = b->waiting;
+    }
+    if (wake)                          /* once, after both clocks have moved on */
         wake_waiting(b);
+    if (b->ms)
+        return;
     if (++b->step10 >= 10) {
         b->step10 = 0;
         for (i = 0; i < RCX_TIMERS; i++)

@@ -126,9 +126,8 @@ srcvar:	mov.b	r0h,r0h			; RF_SRC_VAR: a global variable's value
 	mov.w	@(RF_GLOBAL,r3),r3
 	bra	vref
 
-slow5:	subs	#2,r1			; back to the opcode
-	subs	#2,r1
-	subs	#1,r1
+slow5:	add.b	#-5,r1l			; back to the opcode
+	addx	#-1,r1h
 	.word	0x5A00,slow		; jmp @slow
 vended:	.word	0x5A00,ended		; jmp @ended
 

@@ -74,7 +74,7 @@ static inline void ms(struct rcx *b, unsigned n)
 static inline void arm(struct rcx *b)
 {
     b->task[0].ev.events = 0;
-    events_monitor_enter(b, &b->task[0], 0xFFFF, 0x40);
+    brick_enter_ev(b, &b->task[0], 0xFFFF, 0x40);
 }
 
 /* The events that alerted the watching task since the last call (0: none), watching again afterwards. */

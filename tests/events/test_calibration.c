@@ -126,6 +126,7 @@ static void bad_operands_are_ignored(void **state)
         { 4, 0x03, 2, 0, 0 },                                          /* DirectEvent with no bits */
     };
     static const u8 cal_rows[][5] = { { 0x04, 16, 1, 2, 3 }, { 0x04, 255, 1, 2, 3 } };
+    static const u8 bad_cal[] = { 0x04, 200, 1, 1, 1 };
     static struct rcx_event events[RCX_EVENTS];
     static struct rcx_task tasks[RCX_TASKS];
     static s16 globals[RCX_GLOBALS];
@@ -138,7 +139,7 @@ static void bad_operands_are_ignored(void **state)
     set_event(b, 15, SRC_COUNTER0 + 2, LOW);
     calibrate(b, 15, 1, 2, 3);
     counter(b, 0, 3);
-    events_monitor_enter(b, &b->task[4], 0x8000, 0x44);
+    brick_enter_ev(b, &b->task[4], 0x8000, 0x44);
     for (i = 0; i < sizeof rows / sizeof rows[0] + sizeof cal_rows / sizeof cal_rows[0] + 6; i++) {
         memcpy(events, b->event, sizeof events);
         memcpy(tasks, b->task, sizeof tasks);
@@ -152,7 +153,7 @@ static void bad_operands_are_ignored(void **state)
             case 0: events_set(b, 16, 0, HIGH); break;
             case 1: events_set(b, 0, 11, HIGH); break;
             case 2: events_set(b, 0, 0, 13); break;
-            case 3: events_calibrate(b, 200, 1, 1, 1); break;
+            case 3: events_calibrate(b, bad_cal); break;
             case 4: events_input(b, 3); events_input(b, 255); break;
             default: events_counter_changed(b, 3); events_counter_changed(b, 248); break;
             }

@@ -3,6 +3,7 @@
 #define TEST_BRICK_H
 
 #include "rcx.h"
+#include "sources.h"
 
 /* Arena address used by host tests; any value from 0x8000 keeps UploadRam and the memory map realistic. */
 #define TEST_ARENA_ADDR 0x9000u
@@ -31,5 +32,18 @@ void brick_free_copy(struct rcx *copy);
 
 /* Start task n of the selected slot, as `nqc -run` does for task 0. */
 void brick_start(struct rcx *b, u8 n);
+
+/* ENTER EV and ENTER AC made by task t's byte codes, LEnterEventCheck of a constant MON and EnterAccessControl, whose
+ * label is the pc `lbl` (access_enter() gets it from the interpreter and does not read the distance). */
+static inline void brick_enter_ev(struct rcx *b, struct rcx_task *t, u16 mon, u16 lbl)
+{
+    const u8 ins[6] = { RCX_OP_LENTER_EVENT, RCX_SRC_CONST, (u8)mon, (u8)(mon >> 8), 0, 0 };
+    access_enter(b, t, ins, lbl);
+}
+static inline void brick_enter_ac(struct rcx *b, struct rcx_task *t, u8 res, u16 lbl)
+{
+    const u8 ins[4] = { RCX_OP_ENTER_ACCESS, res, 0, 0 };
+    access_enter(b, t, ins, lbl);
+}
 
 #endif

@@ -165,11 +165,11 @@ static void set_up(struct rcx *b, u8 state)
 {
     struct rcx_task *s = &b->task[S_TASK];
     if (state == EV || state == EV_AC)
-        events_monitor_enter(b, s, MON0, EVL);
+        brick_enter_ev(b, s, MON0, EVL);
     if (state == AC || state == EV_AC || state == AC_EV)
-        access_enter(b, s, RC0, ACL);
+        brick_enter_ac(b, s, RC0, ACL);
     if (state == AC_EV)
-        events_monitor_enter(b, s, MON0, EVL);
+        brick_enter_ev(b, s, MON0, EVL);
     assert_int_equal(s->ev.state, state);
 }
 
@@ -183,19 +183,19 @@ static void apply(struct rcx *b, u8 input)
     case IN_EV: cmd(b, direct_event, sizeof direct_event); break;
     case IN_AC:
         o->priority = PRIO;             /* equal priority may pre-empt (p. 106) */
-        access_enter(b, o, RC0, 0x0100);
+        brick_enter_ac(b, o, RC0, 0x0100);
         assert_int_equal(o->ev.rc, RC0);
         break;
     case IN_EXIT_EV: events_monitor_exit(b, s); break;
     case IN_EXIT_AC: access_exit(b, s); break;
-    case IN_ENTER_EV_MON: events_monitor_enter(b, s, MON1, LBL); break;
-    case IN_ENTER_EV_0: events_monitor_enter(b, s, 0, LBL); break;
-    case IN_ENTER_AC_OK: access_enter(b, s, RES1, LBL); break;
+    case IN_ENTER_EV_MON: brick_enter_ev(b, s, MON1, LBL); break;
+    case IN_ENTER_EV_0: brick_enter_ev(b, s, 0, LBL); break;
+    case IN_ENTER_AC_OK: brick_enter_ac(b, s, RES1, LBL); break;
     case IN_ENTER_AC_REFUSED:
         o->priority = PRIO - 1;         /* higher than S */
-        access_enter(b, o, RES1, 0x0100);
+        brick_enter_ac(b, o, RES1, 0x0100);
         assert_int_equal(o->ev.rc, RES1);
-        access_enter(b, s, RES1, LBL);
+        brick_enter_ac(b, s, RES1, LBL);
         assert_int_equal(o->ev.rc, RES1); /* a refused request takes nothing */
         break;
     case IN_START: cmd(b, start, sizeof start); break;

@@ -405,9 +405,9 @@ static void direct_event(void **state)
     static const u8 ev6[] = { 0x03, 2, 0x06, 0x00 }, ev_var5[] = { 0x03, 0, 5, 0 };
     struct rcx *b = brick_new();
     (void)state;
-    events_monitor_enter(b, &b->task[0], 0x0005, 0x40);
-    events_monitor_enter(b, &b->task[1], 0x0100, 0x41);
-    events_monitor_enter(b, &b->task[2], 0x0002, 0x42);
+    brick_enter_ev(b, &b->task[0], 0x0005, 0x40);
+    brick_enter_ev(b, &b->task[1], 0x0100, 0x41);
+    brick_enter_ev(b, &b->task[2], 0x0002, 0x42);
     cmd(b, ev6, sizeof ev6);
     assert_int_equal(b->task[0].ev.state, ACCESS_NONE);
     assert_int_equal(poll(b, 23, 0), 0x0004);

@@ -442,6 +442,8 @@ static void sensors(void **state)
     s = brick_copy(b);
     wr(b, 10, 1, 5);                           /* not a sensor type */
     wr(b, 10, 1, -1);
+    wr(b, 10, 1, 0x101);                       /* beyond a byte: not type 1 */
+    wr(b, 11, 1, 0x180);                       /* nor mode 0x80 */
     SEND(b, NULL, 0x32, 1, 5);
     SEND(b, NULL, 0x32, 3, 1);                 /* no sensor 3 */
     assert_unchanged(b, s);

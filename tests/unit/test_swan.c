@@ -473,6 +473,8 @@ static void event_sources(void **state)
                                OP7(0x2F, 20, 2, CONST, 6), 0x2D, 5, 20, 2, 0x2D, 6, 27, 2,
                                OP7(0x2F, 18, 2, CONST, 0),       /* SetEventType(2, pressed) */
                                OP7(0x2F, 19, 2, CONST, 8),       /* SetEventSrc(2, counter 0) */
+                               OP7(0x2F, 18, 2, CONST, 0x101),   /* beyond a byte: no type 1 ... */
+                               OP7(0x2F, 19, 2, CONST, 0x103),   /* ... nor source 3 */
                                0x2D, 7, 18, 2, 0x2D, 8, 19, 2 };
     struct rcx *b = run(code, sizeof code);
     (void)state;
