@@ -1,5 +1,5 @@
-/* The decoder's table of Swan's opcodes, generated from include/rcx_opcodes.def (its RCX_SWAN_OP rows). Not in
- * opcodes.c, which runs from the full F000 region on the brick. */
+/* The decoder's table of Swan's opcodes, generated from include/rcx_opcodes.def (its RCX_SWAN_OP rows). A file of its
+ * own: a build without Swan's programs leaves it out whole. */
 #include "rcx_opcodes.h"
 
 #if RCX_SWAN
