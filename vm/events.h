@@ -114,10 +114,9 @@ void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean 
 
 /* Monitoring and access control. ENTER EV and ENTER AC are the byte code at ins (S/LEnterEventCheck or
  * EnterAccessControl), `target` its label: the handler's pc in the task's current code object. The inputs without
- * operands are one call of the state machine (vm/access.h), made in place. */
+ * operands (ExitEventCheck, ExitAccessControl: op_exit in vm/ops.c) are one call of the state machine
+ * (access_input(), vm/access.h), made in place. */
 void access_enter(struct rcx *b, struct rcx_task *t, const u8 *ins, u16 target);
-static inline void events_monitor_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_EV); }
-static inline void access_exit(struct rcx *b, struct rcx_task *t) { access_input(b, t, ACCESS_IN_EXIT_AC); }
 /* START, STOP, DELETE TASK: RELEASE RC, GO NONE, in place (a macro: struct rcx_task is not complete here). */
 #define events_task_ended(b, t) ((void)(b), (void)(*(u16 *)(void *)&(t)->ev.rc = 0)) /* RC and state: one word */
 RCX_STATIC_ASSERT(rc_state_word, offsetof(struct rcx_task_events, rc) % 2 == 0 && ACCESS_NONE == 0 &&

@@ -186,8 +186,8 @@ static void apply(struct rcx *b, u8 input)
         brick_enter_ac(b, o, RC0, 0x0100);
         assert_int_equal(o->ev.rc, RC0);
         break;
-    case IN_EXIT_EV: events_monitor_exit(b, s); break;
-    case IN_EXIT_AC: access_exit(b, s); break;
+    case IN_EXIT_EV: access_input(b, s, ACCESS_IN_EXIT_EV); break; /* as ExitEventCheck runs it */
+    case IN_EXIT_AC: access_input(b, s, ACCESS_IN_EXIT_AC); break; /* ExitAccessControl */
     case IN_ENTER_EV_MON: brick_enter_ev(b, s, MON1, LBL); break;
     case IN_ENTER_EV_0: brick_enter_ev(b, s, 0, LBL); break;
     case IN_ENTER_AC_OK: brick_enter_ac(b, s, RES1, LBL); break;
