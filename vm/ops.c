@@ -311,17 +311,13 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins)
     s16 value = ops_source(b, t, ins);
 #if RCX_SWAN
     u8 ms = (u8)((ins[0] >> 2) & 1); /* WaitMS 0x47, Wait 0x43 */
-    u16 now;
 #endif
 
     if (value <= 0)
         return;                        /* negative: ignored (spec p. 67); zero: no wait */
 #if RCX_SWAN
-    now = b->ticks10;
-    if (ms)
-        now = b->ms_now;
-    t->wake = (u16)(now + (u16)value);
     t->wait_ms = ms;
+    t->wake = (u16)(wait_clock(b, t) + (u16)value);
     b->waiting |= (u8)(ms + 1);        /* WAIT_MS or WAIT_10MS */
 #else
     t->wake = (u16)(b->ticks10 + (u16)value);

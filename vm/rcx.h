@@ -121,6 +121,18 @@ struct rcx {
     u8 arena[RCX_ARENA_SIZE];
 };
 
+#if RCX_SWAN
+/* The clock task t's wait runs on: rcx.ms_now for Swan's WaitMS (t->wait_ms), else rcx.ticks10 (ops_wait, vm_tick).
+ * Written as an if: gcc makes the conditional expression longer. */
+static inline u16 wait_clock(const struct rcx *b, const struct rcx_task *t)
+{
+    u16 now = b->ticks10;
+    if (t->wait_ms)
+        now = b->ms_now;
+    return now;
+}
+#endif
+
 /* Power-on state: empty memory, variables zero, program slot 0, outputs braked (told to the hardware, so attach
  * rcx.port first: it is kept). `arena_addr` is the arena's address on the brick. */
 void vm_init(struct rcx *b, u16 arena_addr);

@@ -23,10 +23,7 @@ static void wake_waiting(struct rcx *b)
         struct rcx_task *t = &b->task[n];
         if (t->state == RCX_TASK_WAITING) {
 #if RCX_SWAN
-            u16 now = b->ticks10;
-            if (t->wait_ms)
-                now = b->ms_now;
-            if ((s16)(u16)(now - t->wake) >= 0) {
+            if ((s16)(u16)(wait_clock(b, t) - t->wake) >= 0) {
                 sched_set_state(b, t, RCX_TASK_RUNNING);
             } else {
                 still |= (u8)(t->wait_ms + 1); /* WAIT_MS or WAIT_10MS */
