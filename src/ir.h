@@ -66,7 +66,8 @@ struct rcx_ir {
 /* rcx_ir.rx_state (src/ir.c). */
 enum {
     IR_RX_IDLE = 0,  /* looking for a header or an opcode */
-    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value (if not, it may begin a packet: below 2, as IDLE) */
+    IR_RX_COMPLEMENT,/* next byte must be the complement of rx_value (if not, it may begin a packet: below 2, as
+                        IDLE) */
     IR_RX_OPCODE,    /* a header ended (its 00): the next byte is the opcode, even FF (F7 toggled) */
     IR_RX_VALUE,     /* next byte is a value */
     IR_RX_READY,     /* a good packet waits for ir_poll(); this and the next ignore what arrives */

@@ -124,7 +124,8 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
  * addr is at least 0x8000 and addr + count does not pass 0xFFFF (vm_direct checks), so a byte below the arena is at
  * most 0x7FFF below it: its offset wraps to 0x8001 or more, past the arena like the bytes above it.
  */
-RCX_STATIC_ASSERT(single_deletes_odd, (D_DELETE_TASK & 1) && (D_DELETE_SUB & 1) && !(D_DELETE_ALL_TASKS & 1) && !(D_DELETE_ALL_SUBS & 1));
+RCX_STATIC_ASSERT(single_deletes_odd, (D_DELETE_TASK & 1) && (D_DELETE_SUB & 1) && !(D_DELETE_ALL_TASKS & 1)
+                                      && !(D_DELETE_ALL_SUBS & 1));
 RCX_STATIC_ASSERT(arena_offsets_wrap_past_it, RCX_ARENA_SIZE <= 0x8001u);
 static u8 upload_ram(const struct rcx *b, u16 addr, u8 count, u8 *out)
 {

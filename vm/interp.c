@@ -2,8 +2,9 @@
  * The interpreter: byte codes of the running tasks in round-robin order, one per task and pass of the scheduler.
  *
  * The byte codes that jump or end the code live here (jumps, loop checks, tests, entering monitoring and
- * access-control regions, the end of a subroutine); every other one runs in ops.c, with the direct commands. Code is untrusted: an instruction that runs past the
- * end of its code object, or a jump that lands outside it, stops the task instead of reading foreign memory.
+ * access-control regions, the end of a subroutine); every other one runs in ops.c, with the direct commands. Code is
+ * untrusted: an instruction that runs past the end of its code object, or a jump that lands outside it, stops the
+ * task instead of reading foreign memory.
  */
 #include "rcx.h"
 #include "sources.h"
@@ -204,7 +205,8 @@ RCX_STATIC_ASSERT(rf_mask, offsetof(struct rcx, runmask) == RF_RUNMASK && offset
 RCX_STATIC_ASSERT(rf_vars, offsetof(struct rcx, global) == RF_GLOBAL && offsetof(struct rcx, task) == RF_TASK);
 RCX_STATIC_ASSERT(rf_arena, offsetof(struct rcx, arena) == RF_ARENA && offsetof(struct rcx, obj_start) == 0);
 RCX_STATIC_ASSERT(rf_task, sizeof(struct rcx_task) == RF_TASK_SIZE && offsetof(struct rcx_task, sub) == RF_SUB
-                           && offsetof(struct rcx_task, pc) == RF_PC && offsetof(struct rcx_task, local_base) == RF_LOCAL_BASE);
+                           && offsetof(struct rcx_task, pc) == RF_PC
+                           && offsetof(struct rcx_task, local_base) == RF_LOCAL_BASE);
 RCX_STATIC_ASSERT(rf_limits, RCX_TASKS == RF_TASKS && RCX_SUBS == RF_SUBS && RCX_SLOT_OBJS == RF_SLOT_OBJS
                              && RCX_NO_SUB == RF_NO_SUB && RCX_GLOBALS == RF_GLOBALS && RCX_LOCALS == RF_LOCALS);
 RCX_STATIC_ASSERT(rf_codes, RCX_TOGGLE == RF_TOGGLE && RCX_OP_SET_VAR == RF_OP_SET_VAR

@@ -1,7 +1,7 @@
 /*
  * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the
- * program-only ones that do not jump (vm/interp.c runs those). Operands were length-checked by the caller; every index and
- * value is range-checked here, and an out-of-range operand makes the instruction do nothing.
+ * program-only ones that do not jump (vm/interp.c runs those). Operands were length-checked by the caller; every
+ * index and value is range-checked here, and an out-of-range operand makes the instruction do nothing.
  */
 #include "rcx.h"
 #include "sources.h"

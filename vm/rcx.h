@@ -78,7 +78,8 @@ struct rcx {
     u16 runmask;    /* bit n set: task n is in RCX_TASK_RUNNING */
     volatile u8 yield; /* set by the port (the brick's tick interrupt): vm_run returns at its next check */
     u8 waiting;     /* WAIT_10MS/WAIT_MS set when a task starts a Wait/WaitMS, cleared once none waits */
-    u8 swan[RCX_SWAN_N(RCX_PROGRAMS)]; /* slot's code uses a Swan opcode or source 43/44 (decided when a download completes) */
+    u8 swan[RCX_SWAN_N(RCX_PROGRAMS)]; /* slot's code uses a Swan opcode or source 43/44 (decided when a download
+                                          completes) */
     u8 message;     /* source 15 (here, in the byte the array leaves before the words) */
     s16 global[RCX_ALL_GLOBALS]; /* 0-31 RCX 2.0's globals, then task t's locals at 32 + 16 t (Swan's overlay) */
     struct rcx_task task[RCX_TASKS];

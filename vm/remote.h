@@ -40,8 +40,8 @@ void remote_command(struct rcx *b, u16 bits);               /* 0xD2 */
 void remote_send_message(struct rcx *b, u8 message);         /* 0xB2 */
 void remote_send_uart(struct rcx *b, u8 start, u8 size);     /* 0xC2, start + size <= 16 checked */
 /* Swan's message with a parameter (0xC3). On the wire: `B3 m lo hi` (a standard packet that firm0328 ignores: no
- * such direct command), then `F7 m` once it is out and the room quiet again; a receiving OpenRCX keeps the parameter and gives
- * it to the message that follows, a firm0328 brick takes the plain message. */
+ * such direct command), then `F7 m` once it is out and the room quiet again; a receiving OpenRCX keeps the parameter
+ * and gives it to the message that follows, a firm0328 brick takes the plain message. */
 void remote_send_message_param(struct rcx *b, u8 message, s16 param);
 void remote_sent(struct rcx *b);     /* the IR layer sent tx and the room is quiet: the follow-up message into tx */
 void remote_param_received(struct rcx *b, const u8 *cmd);         /* direct B3 m lo hi */

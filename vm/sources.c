@@ -13,7 +13,8 @@
 struct source_row {
     u16 offset;     /* of the field for index 0 */
     u8 shape;       /* bits 0-4 stride between indices, SHAPE_WORD, SHAPE_STORE, SHAPE_FIELD */
-    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value; UP_TO_255), LIMIT_EXISTS, LIMIT_WRITABLE */
+    u8 limits;      /* bits 0-5 highest index (RCX_ANY: the index is the value; UP_TO_255), LIMIT_EXISTS,
+                       LIMIT_WRITABLE */
 };
 #define SHAPE_WORD 0x20     /* a 16-bit field, else 8-bit unsigned */
 #define SHAPE_STORE 0x40    /* a write stores any value as it is (message and counters then tell the events) */

@@ -105,7 +105,7 @@ static void real_image_unpacks_in_place(void **state)
     assert_int_equal(size, l.packed_start - l.head_end);
 
     len = round_trip(n);
-    assert_true(len < n * 4 / 5); /* H8 code packs by more than a fifth (by about a quarter: less as the code gets denser) */
+    assert_true(len < n * 4 / 5); /* H8 code packs by more than a fifth (about a quarter: less as it gets denser) */
     len = pack(in + (l.head_end - l.base), n - (l.head_end - l.base), packed);
     assert_null(pack_check_in_place(&l, in, unpacker, packed, len));
     /* What the build downloads: exactly these bytes after the head (the S-records loaded at 0x8000). */
