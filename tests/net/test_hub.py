@@ -131,13 +131,21 @@ def case_clients16():
         check(hub.alive(), "the hub went away")
 
 
+def answer_program(tag, brick=""):
+    """Two scratch files: answer.nqc compiled, and a script that presses Run on `brick` ("@1 ", or "" for brick 0)
+    to start it."""
+    tmp = os.environ.get("NET_TMP", "/tmp")
+    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%s%d.rcx" % (tag, os.getpid())))
+    press = os.path.join(tmp, "press.%s%d.txt" % (tag, os.getpid()))
+    with open(press, "w") as f:
+        f.write("0 %sbutton run down\n50 %sbutton run up\n" % (brick, brick))
+    return answer, press
+
+
 def case_join():
     tmp = os.environ.get("NET_TMP", "/tmp")
-    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%d.rcx" % os.getpid()))
+    answer, press = answer_program("j")
     listen = compile_rcx("listen.nqc", os.path.join(tmp, "listen.%d.rcx" % os.getpid()))
-    press = os.path.join(tmp, "press.%d.txt" % os.getpid())
-    with open(press, "w") as f:
-        f.write("0 button run down\n50 button run up\n")
     try:
         with Hub("--speed", "4", "--load", answer, "--script", press) as hub:
             tty = os.path.join(hub.work, "tty")
@@ -172,10 +180,7 @@ def case_join():
 
 def case_together():
     tmp = os.environ.get("NET_TMP", "/tmp")
-    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%d.rcx" % os.getpid()))
-    press = os.path.join(tmp, "press1.%d.txt" % os.getpid())
-    with open(press, "w") as f:
-        f.write("0 @1 button run down\n50 @1 button run up\n")
+    answer, press = answer_program("t", "@1 ")
     try:
         with Hub("--speed", "10", "--bricks", "2", "--load", "1@" + answer, "--script", press, "--panel", "0",
                  "--tty", os.path.join(tmp, "tty.%d" % os.getpid())) as hub:
@@ -293,11 +298,7 @@ def case_towers():
 
 
 def case_rejoin():
-    tmp = os.environ.get("NET_TMP", "/tmp")
-    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.r%d.rcx" % os.getpid()))
-    press = os.path.join(tmp, "press.r%d.txt" % os.getpid())
-    with open(press, "w") as f:
-        f.write("0 button run down\n50 button run up\n")
+    answer, press = answer_program("r")
 
     def answered(port):
         c = Client(port)
