@@ -24,8 +24,8 @@ folder() {
 # runs CASE: make test-runs on that case's folders; prints make's status
 runs() {
     status=0
-    PATH="$ctest_dir:$PATH" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s -C "$src" test-runs BUILD="$work/$1" HOST_DIR="$work/$1/host" \
-        ASAN_DIR="$work/$1/asan" JOBS=1 >"$work/out" 2>&1 || status=$?
+    PATH="$ctest_dir:$PATH" env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s -C "$src" test-runs \
+        BUILD="$work/$1" HOST_DIR="$work/$1/host" ASAN_DIR="$work/$1/asan" JOBS=1 >"$work/out" 2>&1 || status=$?
     echo $status
 }
 
