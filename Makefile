@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # OpenRCX front door.  `make` builds everything, `make test` runs every test, `make firmware` the brick image,
 # `make bench` prints the benchmarks.  Each target first installs the Debian packages it needs when missing.
 BUILD      ?= build

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The TCP IR link as the hub (--tcp) and as a brick's tower (--tcp-tower); joining another hub is net_join.c. The
  * stream carries the bytes of the air as they are, with no framing, as brickEmu's ir-server relays them: what one

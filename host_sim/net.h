@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The TCP IR link of NQC 4 (-Stcp), brickOS-bibo and brickEmu's ir-server: a raw byte stream both ways, no framing,
  * port 50637 by default. Three ways into the IR room:

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The simulated IR room: the one place every way into the virtual RCX's infrared plugs in.
  *

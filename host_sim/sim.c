@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * rcxsim, the virtual RCX: options, the bricks' power-on, and the main loop that advances simulated time one
  * millisecond at a time (rt_tick, A/D samples, rt_run with the byte-code budget of that millisecond).

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # rcxsim refuses what it cannot do, with a one-line message and exit status 2, instead of running half set up.
 . "$E2E_DIR/lib.sh"
 # Each refusal is one line, "rcxsim: " first, naming the option (or argument) it refuses: refused "what" NAME args...

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """Shared by the TCP link tests: rcxsim as the IR hub on a free loopback port, and a client that talks to it the way
 NQC 4's TCP link (-Stcp) does (stdlib only).
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """rcxsim --tcp / --tcp-join (issue 17 §3): one case per run, named on the command line.
 
   nqc_link     a client speaking as NQC 4's TCP link: ping, a program download, start, polls until it ran

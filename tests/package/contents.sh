@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The package holds the files the issue lists, under /usr, and its control fields are what they must be.
 . "$PACKAGE_DIR/lib.sh"
 case "$(basename "$DEB")" in
