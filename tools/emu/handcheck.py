@@ -157,12 +157,14 @@ def check_buttons(b, r):
             break
     r.check("View goes round 7 places and back", len(seen) == 8 and seen[-1] == first,
             "; ".join(x.split(" fig_body")[0] + x.split("fig2")[-1] for x in seen))
+    # Presses 0.3 s apart: a release followed by a press within a few ms reads as one press (debounce), as it should.
     b.press("P")
     p = wait_until(lambda: b.program_digit() == "2", 2)
     r.check("Prgm selects program 2", p is not None, b.lcd())
     for _ in range(4):
+        time.sleep(0.3)
         b.press("P")
-        time.sleep(0.25)
+    time.sleep(0.3)
     r.check("four more Prgm presses come back to program 1", b.program_digit() == "1", b.lcd())
 
 
