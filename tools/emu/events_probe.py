@@ -47,7 +47,8 @@ def on_input1(types):
 
 
 def program(setup, motor=False):
-    """The measured program: x is variable 0, its copies 1 and 2, the finished flag 3."""
+    """The measured program: x is variable 0, its copies 1 and 2, the finished flag 3. Motor A (if asked) comes on
+    before the events are set up, so that it is on whatever they do to the brick."""
     return """int x;
 int a;
 int b;
@@ -66,7 +67,7 @@ task counter()
     b = x;
     done = 1;
 }
-""" % (setup, "    OnFwd(OUT_A);\n" if motor else "")
+""" % ("    OnFwd(OUT_A);\n" if motor else "", setup)
 
 
 CHANGING = ("    SetSensor(SENSOR_1, SENSOR_ROTATION);\n    ClearSensor(SENSOR_1);\n"
@@ -191,10 +192,14 @@ def buttons_rows(args):
             if what == "run":
                 b.press("R")
                 stopped = wait_until(lambda: b.emu.motors[0][0] in (0, 3) or b.emu.motors[0][1] == 0, 5)
-                lines.append("%-10s %s  Run pressed with 16 events: motor A %s%s" % (
+                took = time.time() - t
+                # Stopped, the program no longer counts: is the brick reachable again (the events stay set up)?
+                ok, _, lat = b.ping()
+                lines.append("%-10s %s  Run pressed with 16 events: motor A %s%s; then a ping: %s" % (
                     "run", "PASS" if running and stopped else "FAIL",
-                    "stopped after %.2f s" % (time.time() - t) if stopped else "still on after 5 s",
-                    "" if running else " (motor A never came on)"))
+                    "stopped after %.2f s" % took if stopped else "still on after 5 s",
+                    "" if running else " (motor A never came on)",
+                    "answered (%.1f ms)" % lat if ok and lat is not None else "answered" if ok else "no reply"))
             else:
                 b.press("O")
                 off = wait_until(lambda: b.lcd_on() == 0, 5)
