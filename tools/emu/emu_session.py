@@ -63,9 +63,6 @@ class Report:
         self.rows.append((name, "SKIP", why))
         print("SKIP  %s  (%s)" % (name, why), flush=True)
 
-    def note(self, text):
-        print("      " + text, flush=True)
-
     def summary(self):
         n = {k: sum(1 for r in self.rows if r[1] == k) for k in ("PASS", "FAIL", "SKIP")}
         print("%d PASS, %d FAIL, %d SKIP" % (n["PASS"], n["FAIL"], n["SKIP"]), flush=True)

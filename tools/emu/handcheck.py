@@ -133,8 +133,7 @@ def check_buttons(b, r):
     b.press("R")
     time.sleep(0.3)
     r.check("Run stops it", counting(b) is False, b.lcd())
-    m = b.emu.motors
-    time.sleep(0.3)
+    time.sleep(0.3)                     # the emulator reports outputs as 100 ms averages
     m = b.emu.motors
     r.check("motors stopped after Run", all(m[i][1] == 0 or m[i][0] == 3 for i in range(3)), str(m))
     b.press("R")

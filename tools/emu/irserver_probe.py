@@ -9,9 +9,10 @@ Starts brickEmu's `ir-server` on a free loopback port (BRICKEMU_IR_PORT, mend 4 
 BRICKEMU_IR_FOREGROUND=1 it stays in the foreground and is stopped by its pid, else it ends when its last client
 leaves), then `rcxsim --rom --tcp-join 127.0.0.1:PORT`: a brick with only the ROM. The client is the project's
 stand-in for NQC 4's TCP link (tests/net/net_lib.py: no tower echo expected, the reply searched after the hub's echo,
-4 tries, 0.5 s per reply) with NQC's 0.3 s wait for a download block's reply. It downloads the firmware as
-`nqc -firmware` does (10, 15, 65, 75, 45 blocks of 200 bytes, A5, 15), then a program as `nqc -d` does, starts it
-and polls its result. Each step prints PASS/FAIL, its time and how many packets it took (a step that needed
+4 tries, 0.5 s per reply). It downloads the firmware as `nqc -firmware` does (10, 15, 65, 75, 45 blocks of 200
+bytes, A5, 15), waiting for each reply until nothing has come for 0.5 s (0.3 s after a block, NQC's wait); then, on
+a brick with its firmware, a program as `nqc -d` does (net_lib's own download), starts it and polls its result.
+--hub rcxsim runs the same against `rcxsim --tcp` instead, for comparison. Each step prints PASS/FAIL, its time and how many packets it took (a step that needed
 retries took more packets than commands).
 """
 import argparse
@@ -27,7 +28,7 @@ VERSION_REPLY = bytes.fromhex("0003000100030208")
 KEY = [0x01, 0x03, 0x05, 0x07, 0x0B]
 UNLOCK = [0xA5, 0x4C, 0x45, 0x47, 0x4F, 0xAE]     # "LEGO" and AE: start the firmware
 BLOCK = 200
-BLOCK_WAIT = 0.3                                  # NQC waits this long for a download block's reply
+BLOCK_WAIT = 0.3                                  # NQC waits this long after a download block
 
 
 def srec_image(path):
@@ -69,75 +70,126 @@ class Step:
             flush=True)
 
 
-def stop_sim(sim):
-    """Stops an rcxsim (by its own pid) and prints what it said."""
-    sim.terminate()
+def command_idle(net_lib, client, payload, reply_len, idle):
+    """A direct command as net_lib's Client sends it (bit 3 toggled on a repeated opcode, pending input drained, the
+    same bytes up to 4 times), but a try ends only when nothing has come for `idle` seconds: NQC 4.1 flashes a brick
+    through rcxsim --tcp, whose echo comes at air speed, and fails through ir-server, whose echo comes at once
+    (issue 23), so its wait for a download block's reply runs from the last byte heard, not from the send."""
+    payload = bytearray(payload)
+    if payload[0] == client.last_op:
+        payload[0] ^= 0x08
+    client.last_op = payload[0]
+    packet, want = net_lib.frame(payload), payload[0] ^ 0xFF
+    for _ in range(client.TRIES):
+        client.drain()
+        client.write(packet)
+        got, last = bytearray(), time.monotonic()
+        while time.monotonic() - last < idle:
+            chunk = client.read(0.02)
+            if chunk:
+                got += chunk
+                last = time.monotonic()
+                reply = net_lib.find_packet(bytes(got), want)
+                if reply is not None and len(reply) == reply_len:
+                    return reply
+    return None
+
+
+def stop_proc(proc, name):
+    """Stops one of our processes by its own pid and prints what it said on its standard error."""
+    proc.terminate()
     try:
-        err = sim.communicate(timeout=5)[1].decode(errors="replace").strip()
+        err = proc.communicate(timeout=5)[1].decode(errors="replace").strip()
     except subprocess.TimeoutExpired:
-        sim.kill()
+        proc.kill()
         err = ""
     if err:
-        print("      rcxsim said: " + err.replace("\n", " | "), flush=True)
+        print("      %s said: %s" % (name, err.replace("\n", " | ")), flush=True)
+
+
+class Room:
+    """A hub on a free loopback port, a brick in it (rcxsim, --rom or with its firmware) and our client.
+
+    hub "ir-server": brickEmu's ir-server and `rcxsim --tcp-join`; hub "rcxsim": `rcxsim --tcp` itself, for comparison.
+    """
+
+    def __init__(self, args, net_lib, rom):
+        self.procs = []
+        self.client = None
+        self.sent = [0, 0]                          # packets written, commands given (retries: more packets)
+        port = free_port()
+        if args.hub == "ir-server":
+            env = dict(os.environ, BRICKEMU_IR_PORT=str(port), BRICKEMU_IR_FOREGROUND="1")
+            self._start("ir-server", [args.irserver], env)
+        else:
+            self._start("rcxsim", [args.rcxsim] + (["--rom"] if rom else []) + ["--tcp", "127.0.0.1:%d" % port])
+        # The client connects first and stays: ir-server ends when its last client leaves.
+        end = time.time() + 5
+        while self.client is None:
+            try:
+                self.client = net_lib.Client(port)
+            except OSError:
+                if time.time() > end:
+                    raise SystemExit("the hub did not listen on port %d" % port)
+                time.sleep(0.05)
+        write, command = self.client.write, self.client.command
+
+        def counting_write(data):
+            self.sent[0] += 1
+            write(data)
+
+        def counting_command(payload, reply_len):
+            self.sent[1] += 1
+            return command(payload, reply_len)
+        self.client.write, self.client.command = counting_write, counting_command
+        if args.hub == "ir-server":
+            self._start("rcxsim", [args.rcxsim] + (["--rom"] if rom else []) + ["--tcp-join", "127.0.0.1:%d" % port])
+        time.sleep(1.0)
+
+    def _start(self, name, argv, env=None):
+        self.procs.append((name, subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)))
+
+    def close(self):
+        if self.client:
+            self.client.close()
+        for name, proc in reversed(self.procs):
+            if proc.poll() is None:
+                stop_proc(proc, name)
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rcxsim", default=os.path.join(REPO, "build", "host", "rcxsim"))
     ap.add_argument("--firmware", default=os.path.join(REPO, "build", "h8300", "drivers", "openrcx.srec"))
-    ap.add_argument("--skip-firmware", action="store_true", help="start rcxsim with its firmware, not --rom")
+    ap.add_argument("--skip-firmware", action="store_true", help="only the program steps (rcxsim with its firmware)")
+    ap.add_argument("--hub", choices=("ir-server", "rcxsim"), default="ir-server",
+                    help="the hub: brickEmu's ir-server (default), or rcxsim --tcp for comparison")
     a = ap.parse_args()
-    irserver = os.path.join(os.environ.get("BRICKEMU_DIR", ""), "ir-server")
-    for f, what in ((irserver, "BRICKEMU_DIR/ir-server"), (a.rcxsim, "rcxsim (make host)")):
+    a.irserver = os.path.join(os.environ.get("BRICKEMU_DIR", ""), "ir-server")
+    need = [(a.rcxsim, "rcxsim (make host)")] + ([(a.irserver, "BRICKEMU_DIR/ir-server")] if a.hub == "ir-server"
+                                                 else [])
+    for f, what in need:
         if not os.access(f, os.X_OK):
             sys.exit("%s not found: %s" % (what, f))
     os.environ["RCXSIM"] = a.rcxsim                  # net_lib's helpers want it
     sys.path.insert(0, NET_TESTS)
     import net_lib                                   # noqa: E402
 
-    port = free_port()
-    hub = subprocess.Popen([irserver], env=dict(os.environ, BRICKEMU_IR_PORT=str(port), BRICKEMU_IR_FOREGROUND="1"),
-                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    sim = None
-    client = None
     st = Step()
+    room = None
     try:
-        # The first client must stay: ir-server ends when its last client leaves.
-        end = time.time() + 5
-        while client is None:
-            try:
-                client = net_lib.Client(port)
-            except OSError:
-                if time.time() > end:
-                    sys.exit("ir-server did not listen on port %d" % port)
-                time.sleep(0.05)
-        sent = [0, 0]                                # packets written, commands given (retries: more packets)
-        write, command = client.write, client.command
-
-        def counting_write(data):
-            sent[0] += 1
-            write(data)
-
-        def counting_command(payload, reply_len):
-            sent[1] += 1
-            return command(payload, reply_len)
-        client.write, client.command = counting_write, counting_command
-        def start_sim(*opts):
-            p = subprocess.Popen([a.rcxsim] + list(opts) + ["--tcp-join", "127.0.0.1:%d" % port],
-                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-            time.sleep(1.0)
-            return p
-        sim = start_sim(*([] if a.skip_firmware else ["--rom"]))
+        room = Room(a, net_lib, rom=not a.skip_firmware)
+        client, sent = room.client, room.sent
 
         def cmd(payload, reply_len, wait=0.5):
-            client.TIMEOUT = wait
-            return client.command(payload, reply_len)
+            sent[1] += 1
+            return command_idle(net_lib, client, payload, reply_len, wait)
 
         t0, sent[:] = time.time(), [0, 0]
         r = None
         while r is None and time.time() - t0 < 5:
             r = cmd([0x10], 1)
-        st.report("ping through ir-server", r is not None, t0, sent)
+        st.report("ping through " + a.hub, r is not None, t0, sent)
 
         if not a.skip_firmware:
             entry, image = srec_image(a.firmware)
@@ -163,9 +215,10 @@ def main():
             st.report("firmware download as nqc -firmware (%d blocks)" % len(blocks), ok, t0, sent,
                       bad or ("version %s" % (v[1:].hex(" ") if v else None)))
             if not ok:
-                # The program steps on a brick that has its firmware already: a new rcxsim without --rom.
-                stop_sim(sim)
-                sim = start_sim()
+                # The program steps on a brick that has its firmware already: a new room, rcxsim without --rom.
+                room.close()
+                room = Room(a, net_lib, rom=False)
+                client, sent = room.client, room.sent
             time.sleep(0.5)
 
         t0, sent[:] = time.time(), [0, 0]
@@ -177,6 +230,7 @@ def main():
             ok, why = True, ""
         except SystemExit:                           # net_lib's check() exits; its message is on stderr
             ok, why = False, "see the message above"
+        os.unlink(rcx)
         st.report("program download as nqc -d (count.nqc)", ok, t0, sent, why)
         t0, sent[:] = time.time(), [0, 0]
         started = cmd([0x71, 0], 1) is not None
@@ -188,13 +242,8 @@ def main():
             time.sleep(0.1)
         st.report("start it and poll variable 0 = 42", started and val == 42, t0, sent, "value %s" % val)
     finally:
-        if client:
-            client.close()
-        if sim:
-            stop_sim(sim)
-        if hub.poll() is None:
-            hub.terminate()
-            hub.wait(5)
+        if room:
+            room.close()
     return 0 if st.ok else 1
 
 
