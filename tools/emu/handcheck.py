@@ -226,14 +226,46 @@ def check_power(b, r, slow):
     r.check("On-Off wakes it, it answers", on is not None and ok, b.lcd())
 
 
+def download_packets(b, mark):
+    """Download blocks (45/4D) and unlocks (A5/AD) the host sent after IR log offset `mark`: more blocks than the
+    image has means retries (nqc waits 0.3 s for a block's reply; a stalled host or emulator costs a retry)."""
+    blocks = unlocks = 0
+    with open(b.irlog) as f:
+        f.seek(mark)
+        for line in f:
+            parts = line.split(None, 2)
+            if len(parts) == 3 and parts[1] == "host" and parts[2].startswith("55 ff 00 "):
+                op = int(parts[2][9:11], 16) & 0xF7
+                blocks += op == 0x45
+                unlocks += op == 0xA5
+    return blocks, unlocks
+
+
 def flash(b, r, lgo, label):
+    mark = os.path.getsize(b.irlog)
     rc, out, secs = b.nqc("-firmware", lgo, timeout=400)
-    r.check(label + ": nqc -firmware", rc == 0, "%.0f s, rc %d %s" % (secs, rc, out.splitlines()[-1:] if rc else ""))
+    blocks, unlocks = download_packets(b, mark)
+    r.check(label + ": nqc -firmware", rc == 0, "%.0f s, %d block packets for %d blocks, %d unlock, rc %d%s" % (
+        secs, blocks, image_blocks(lgo), unlocks, rc,
+        (" " + out.splitlines()[-1]) if rc and out else ""))
     v = b.raw_cmd("15010305070b")
     shows = wait_until(lambda: "0000" in b.digits(), 5)
     r.check(label + ": the new image answers the version and shows 0000", v == VERSION_REPLY and shows is not None,
             "%s, %s" % (v and v.hex(" "), b.lcd()))
     return rc == 0
+
+
+def image_blocks(srec):
+    """How many 200-byte blocks nqc sends for an S-record image (its bytes from the lowest address up)."""
+    lo = hi = None
+    for line in open(srec):
+        if line[:2] in ("S1", "S2", "S3"):
+            alen = {"S1": 2, "S2": 3, "S3": 4}[line[:2]]
+            raw = bytes.fromhex(line[2:].strip())
+            addr = int.from_bytes(raw[1:1 + alen], "big")
+            end = addr + len(raw) - 2 - alen
+            lo, hi = addr if lo is None else min(lo, addr), end if hi is None else max(hi, end)
+    return 0 if lo is None else (hi - lo + 199) // 200
 
 
 def check_brickos(b, r, lgo):
