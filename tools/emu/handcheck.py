@@ -17,6 +17,7 @@ import subprocess
 import sys
 import time
 
+sys.dont_write_bytecode = True           # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from emu_session import BATTERY_RAW, DEFAULT_IMAGE, DEFAULT_LGO, Brick, Report, wait_until  # noqa: E402
 

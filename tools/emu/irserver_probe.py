@@ -120,7 +120,7 @@ class Room:
         port = free_port()
         if args.hub == "ir-server":
             env = dict(os.environ, BRICKEMU_IR_PORT=str(port), BRICKEMU_IR_FOREGROUND="1")
-            self._start("ir-server", [args.irserver], env)
+            self._start("ir-server", [args.irserver], env, cwd=os.path.dirname(args.irserver))
         else:
             self._start("rcxsim", [args.rcxsim] + (["--rom"] if rom else []) + ["--tcp", "127.0.0.1:%d" % port])
         # The client connects first and stays: ir-server ends when its last client leaves.
@@ -146,8 +146,10 @@ class Room:
             self._start("rcxsim", [args.rcxsim] + (["--rom"] if rom else []) + ["--tcp-join", "127.0.0.1:%d" % port])
         time.sleep(1.0)
 
-    def _start(self, name, argv, env=None):
-        self.procs.append((name, subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)))
+    def _start(self, name, argv, env=None, cwd=None):
+        """cwd: brickEmu's build writes a gmon.out (it is built with -pg) where it runs."""
+        self.procs.append((name, subprocess.Popen(argv, env=env, cwd=cwd, stdout=subprocess.DEVNULL,
+                                                  stderr=subprocess.PIPE)))
 
     def close(self):
         if self.client:
@@ -172,6 +174,7 @@ def main():
         if not os.access(f, os.X_OK):
             sys.exit("%s not found: %s" % (what, f))
     os.environ["RCXSIM"] = a.rcxsim                  # net_lib's helpers want it
+    sys.dont_write_bytecode = True                   # no __pycache__ in the source tree
     sys.path.insert(0, NET_TESTS)
     import net_lib                                   # noqa: E402
 
