@@ -12,8 +12,8 @@ stand-in for NQC 4's TCP link (tests/net/net_lib.py: no tower echo expected, the
 4 tries, 0.5 s per reply). It downloads the firmware as `nqc -firmware` does (10, 15, 65, 75, 45 blocks of 200
 bytes, A5, 15), waiting for each reply until nothing has come for 0.5 s (0.3 s after a block, NQC's wait); then, on
 a brick with its firmware, a program as `nqc -d` does (net_lib's own download), starts it and polls its result.
---hub rcxsim runs the same against `rcxsim --tcp` instead, for comparison. Each step prints PASS/FAIL, its time and how many packets it took (a step that needed
-retries took more packets than commands).
+--hub rcxsim runs the same against `rcxsim --tcp` instead, for comparison. Each step prints PASS/FAIL, its time
+and how many packets it took (a step that needed retries took more packets than commands).
 """
 import argparse
 import os
