@@ -160,12 +160,10 @@ static __attribute__((noinline)) void buttons_changed(void)
             rt_button(&brick, i, (u8)(buttons.state & bit)); /* non-zero: down */
 }
 
-/* One millisecond of the runtime: a scan if `scan` and one is waiting, the buttons, then the clock. Inline in the
- * main loop, which runs it a thousand times a second: the buttons' work, rarely needed, is a call of its own. */
-static inline void millisecond(u8 scan)
+/* One millisecond of the runtime: the buttons, then the clock. Inline in the main loop, which runs it a thousand
+ * times a second: the buttons' work, rarely needed, is a call of its own. */
+static inline void millisecond(void)
 {
-    if (scan && drv_ad_seen != drv_ad_done)
-        feed_scan();
     /* The same pins as last time, and no change being timed: the debounced state is what they show. */
     if (BUTTON_PINS() != button_pins || buttons.cand)
         buttons_changed();
@@ -223,15 +221,18 @@ int main(void)
             rt_skip(&brick, i);
             seen = (u8)(seen + i);
         }
-        /* The millisecond that ends a 10 ms step (timers, events, the display's frame every other step) has a pass
-         * of its own, without a scan: the two costliest parts of a pass are never added up. */
+        /* A scan each pass, then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events,
+         * the display's frame every other step) has a pass of its own, without a scan: the two costliest parts of a
+         * pass are never added up. */
+        step = seen != drv_ms_ticks && brick.vm.ms == 9;
+        if (!step && drv_ad_seen != drv_ad_done)
+            feed_scan();
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
-            step = brick.vm.ms == 9;
-            if (step && i)
+            if (brick.vm.ms == 9 && (i || !step)) /* a step's end, in a pass that fed a scan or ticked */
                 break;
             if (!(u8)(++seen & BATTERY_EVERY))
                 battery_sample();
-            millisecond(!(i | step));
+            millisecond();
             if (step)
                 break;
         }

@@ -99,9 +99,8 @@ static void watch_start(void)
     long rts;
     loop_top = (uint16_t)h8_sym("_sci_drain");
     irq_entry = (uint16_t)h8_sym("_rcx_timer_irq");
-    rts = h8_sym("_rcx_irq_rts");
-    assert_true(rts > 0);
-    irq_exit = (uint16_t)rts;
+    rts = h8_sym("_rcx_irq_rts"); /* images before issue 21 have none: their ticks are not timed */
+    irq_exit = rts > 0 ? (uint16_t)rts : 0;
     top_at = gap_max = tick_max = passes = irq_at = 0;
     profiling = getenv("H8LOAD_PROFILE") != NULL;
     memset(max_prof, 0, sizeof max_prof);
