@@ -15,15 +15,15 @@
 
 /*
  * The brick never goes deaf (issue 21, docs/timing.md): every pass of the main loop looks at the IR link and the
- * buttons and gives rt_run() its turn, whatever the program costs. A pass counts up to TICKS_PER_PASS of the
- * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time) but feeds one scan at most, which may cost
- * the events on its inputs more than a millisecond. While a scan or a millisecond is still owed the tasks get a
- * slice of RUN_SLICE byte codes, not the run until the next tick, so that the loop is soon back: a program that asks
- * for more than the CPU can do gets fewer samples (the ring keeps the latest, irq.s) and runs slower.
- * TICKS_BACKLOG only guards against a step the loop never returns from: nothing the runtime does takes that long.
+ * buttons and gives rt_run() its turn, whatever the program costs. A pass feeds the scans waiting until a tick
+ * comes, one only if it costs the events on its inputs a millisecond or more, and counts up to TICKS_PER_PASS of the
+ * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time). While a scan or a millisecond is still
+ * owed the tasks get a slice of one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon
+ * back: a program that asks for more than the CPU can do gets fewer samples (the ring keeps the latest three, irq.s)
+ * and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
  */
 #define TICKS_PER_PASS 4
-#define RUN_SLICE 8
+#define RUN_SLICE RCX_RUN_CHUNK
 #define TICKS_BACKLOG 100
 
 static struct rcx_brick brick;
@@ -221,12 +221,19 @@ int main(void)
             rt_skip(&brick, i);
             seen = (u8)(seen + i);
         }
-        /* A scan each pass, then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events,
-         * the display's frame every other step) has a pass of its own, without a scan: the two costliest parts of a
-         * pass are never added up. */
+        /* The scans waiting, until a tick comes (so at least one, and one only if it costs a millisecond or
+         * more), then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events, the display's
+         * frame every other step) has a pass of its own, without scans: the two costliest parts of a pass are never
+         * added up. */
         step = seen != drv_ms_ticks && brick.vm.ms == 9;
-        if (!step && drv_ad_seen != drv_ad_done)
-            feed_scan();
+        if (!step) {
+            i = drv_ms_ticks;
+            while (drv_ad_seen != drv_ad_done) {
+                feed_scan();
+                if (drv_ms_ticks != i)
+                    break;
+            }
+        }
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
             if (brick.vm.ms == 9 && (i || !step)) /* a step's end, in a pass that fed a scan or ticked */
                 break;
@@ -236,8 +243,8 @@ int main(void)
             if (step)
                 break;
         }
-        /* Cleared before the clock is read: a tick from now on ends the run. Run even when milliseconds are still
-         * owed: commands are answered and the tasks get a slice (until the next tick) in every pass. */
+        /* Cleared before the clock is read: a tick from now on ends the run. Run even when milliseconds or a scan
+         * are still owed: commands are answered and the tasks get a slice in every pass. */
         brick.vm.yield = 0;
         owed = seen != drv_ms_ticks || drv_ad_seen != drv_ad_done;
         /* Tasks run on through quiet milliseconds: the tick interrupt lets that many pass without ending the run
@@ -246,11 +253,12 @@ int main(void)
          * set, was cleared above, but drv_woken tells. */
         quiet = brick.vm.runmask && !drv_woken && !owed ? quiet_ms() : 0;
         drv_quiet = quiet;
-        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
-         * milliseconds it sleeps on, as long as no sample or byte comes in. In both cases the milliseconds are
-         * counted at once above, all but the last, which rt_tick() takes as usual. The buttons are looked at then:
-         * a press is seen at most 9 ms later, and the debouncing times it as before from there. */
-        if (!rt_run(&brick, owed ? RUN_SLICE : RUN_BUDGET) && seen == drv_ms_ticks) {
+        /* Nothing ran and nothing is owed (a scan left for the next pass must not wait out a sleep): sleep until
+         * the next interrupt (at most 1 ms away), which saves the batteries. Through quiet milliseconds it sleeps
+         * on, as long as no sample or byte comes in. In both cases the milliseconds are counted at once above, all
+         * but the last, which rt_tick() takes as usual. The buttons are looked at then: a press is seen at most
+         * 9 ms later, and the debouncing times it as before from there. */
+        if (!rt_run(&brick, owed ? RUN_SLICE : RUN_BUDGET) && !owed && seen == drv_ms_ticks) {
             quiet = quiet_ms();
             do
                 h8_sleep();
