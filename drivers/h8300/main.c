@@ -19,7 +19,7 @@
  * comes, one only if it costs the events on its inputs a millisecond or more, and counts up to TICKS_PER_PASS of the
  * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time). While a scan or a millisecond is still
  * owed the tasks get a slice of one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon
- * back: a program that asks for more than the CPU can do gets fewer samples (the ring keeps the latest three, irq.s)
+ * back: a program that asks for more than the CPU can do gets fewer samples (the ring keeps the latest four, irq.s)
  * and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
  */
 #define TICKS_PER_PASS 4
@@ -113,16 +113,19 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
-    u8 i, seen = drv_ad_seen, done = drv_ad_done;
+    u8 i, seen = drv_ad_seen, done;
     const volatile u16 *slot;
 
-    if ((u8)(done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any moment: */
-        seen = (u8)(done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* skipped */
+    /* With the interrupt held off, every slot may be read: the one it would rewrite next too (all four scans kept),
+     * and if it has rewritten the oldest already, that one is skipped. */
+    h8_irq_disable();
+    done = drv_ad_done;
+    if ((u8)(done - seen) > DRV_AD_SLOTS * DRV_AD_SLOT)
+        seen = (u8)(done - DRV_AD_SLOTS * DRV_AD_SLOT);
     slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
     /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
     p = s + 3;
     i = 3;
-    h8_irq_disable();
     do
         *--p = *slot++;
     while (--i);
