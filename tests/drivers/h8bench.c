@@ -63,16 +63,8 @@ static int get_x(void)
 struct prof { const char *name; unsigned long long states; };
 static struct prof prof[FUNCS], prof_run[FUNCS];
 static unsigned long long pc_states[65536];
-static unsigned long dbg_slice, dbg_full, dbg_pass, dbg_feed; static long dbg_rtrun = -2, dbg_top = -2, dbg_fs;
 static void profile(struct h8 *sim, uint16_t pc, unsigned states)
 {
-    if (dbg_rtrun == -2) { dbg_rtrun = h8_sym("_rt_run"); dbg_top = h8_sym("_sci_drain"); dbg_fs = h8_sym("_feed_scan"); }
-    if (pc == dbg_rtrun) { if (sim->r[1] == 0xFFFF) dbg_full++; else dbg_slice++;
-        if (getenv("DBGT") && dbg_pass > 500 && dbg_pass < 540) fprintf(stderr, "  %.3f rt_run %s ticks %u seen %u done %u\n", sim->states / 16000.0, sim->r[1] == 0xFFFF ? "full" : "slice", sim->mem[h8_sym("_drv_ms_ticks")], sim->mem[h8_sym("_drv_ad_seen")], sim->mem[h8_sym("_drv_ad_done")]); }
-    if (getenv("DBGT") && pc == dbg_fs && dbg_pass > 500 && dbg_pass < 540) fprintf(stderr, "  %.3f feed\n", sim->states / 16000.0);
-    if (getenv("DBGT") && pc == dbg_top && dbg_pass > 500 && dbg_pass < 540) fprintf(stderr, "%.3f top\n", sim->states / 16000.0);
-    if (pc == dbg_fs) dbg_feed++;
-    if (pc == dbg_top) dbg_pass++;
     pc_states[pc] += states;
     const char *f = h8_func_at(pc);
     int i;
@@ -242,7 +234,6 @@ static int whole_image(const char *image, const char *nm, unsigned busy, int swa
         if (lat > worst)
             worst = lat;
     }
-    dbg_pass = dbg_full = dbg_slice = dbg_feed = 0;
     memset(prof, 0, sizeof prof);
     m->h.trace = getenv("H8BENCH_PROFILE") ? profile : NULL;
     if (h8m_run(m, ts + 1100 * H8M_MS))
@@ -250,7 +241,6 @@ static int whole_image(const char *image, const char *nm, unsigned busy, int swa
     m->h.trace = NULL;
     if (getenv("H8BENCH_PROFILE"))
         dump("busy, per ms", 1000);
-    fprintf(stderr, "DBG passes %lu full %lu slice %lu feed %lu\n", dbg_pass, dbg_full, dbg_slice, dbg_feed); dbg_pass = dbg_full = dbg_slice = dbg_feed = 0;
     x1 = poll_var(m, 1, NULL);
     x2 = poll_var(m, 2, NULL);
     w->steps = w->turned = 0;
