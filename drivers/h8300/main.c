@@ -238,7 +238,7 @@ int main(void)
             }
         }
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
-            if (brick.vm.ms == 9 && (i || !step)) /* a step's end, in a pass that fed a scan or ticked */
+            if (brick.vm.ms == 9 && !step) /* a step's end, in a pass that may have fed scans or ticked */
                 break;
             if (!(u8)(++seen & BATTERY_EVERY))
                 battery_sample();
@@ -254,7 +254,7 @@ int main(void)
          * (rcx.yield) as long as they start nothing that needs the clock (irq.s), and an interrupt that leaves
          * work ends it. Not this time if such an interrupt came since the inputs were read: rcx.yield, which it
          * set, was cleared above, but drv_woken tells. */
-        quiet = brick.vm.runmask && !drv_woken && !owed ? quiet_ms() : 0;
+        quiet = brick.vm.runmask && !drv_woken ? quiet_ms() : 0;
         drv_quiet = quiet;
         /* Nothing ran and nothing is owed (a scan left for the next pass must not wait out a sleep): sleep until
          * the next interrupt (at most 1 ms away), which saves the batteries. Through quiet milliseconds it sleeps

@@ -125,23 +125,16 @@ struct whole { double idle_share, rate, ping_ms; int turned, steps; };
  */
 struct load { unsigned events; int changing; };
 static unsigned long long stim_from;
-static const uint16_t turn_level[4] = { 1000, 860, 400, 640 }; /* a rotation sensor's phases (rcx-hardware.md §3.3) */
 
 static void stimulus(struct h8machine *m, unsigned ch)
 {
-    unsigned long long t, ms;
-    unsigned p;
+    unsigned long long t = m->h.states - stim_from;
     if (m->h.states < stim_from)
         return;
-    t = m->h.states - stim_from;
-    ms = t / H8M_MS;
-    if (ch == 2) {                     /* input 1: a step each millisecond, half way between ticks */
-        m->ad_raw[2] = turn_level[(t + H8M_MS / 2) / H8M_MS & 3];
-    } else if (ch < 2) {
-        p = (unsigned)((ms + 100 * ch) % 400);
-        m->ad_raw[ch] = (uint16_t)((p < 200 ? 300 + 3 * p : 900 - 3 * (p - 200))
-                                   + ((uint32_t)ms * 2654435761u >> 24) % 41 - 20);
-    }
+    if (ch == 2)                       /* input 1: a step each millisecond, half way between ticks */
+        m->ad_raw[2] = h8m_rotation_raw((t + H8M_MS / 2) / H8M_MS);
+    else if (ch < 2)                   /* inputs 2 and 3, 100 ms apart in their sweeps */
+        m->ad_raw[ch] = h8m_light_sweep_raw(t / H8M_MS + 100 * ch);
 }
 
 static int load_setup(struct h8machine *m, const struct load *ld)
@@ -396,9 +389,10 @@ int main(int argc, char **argv)
             printf("  Swan, 1 task     not in this image (built with RCX_IMAGE_SWAN=OFF)\n");
         printf("  nothing to do    %6.1f %% of the CPU every millisecond  floor <= 8 %% (most of them skipped: "
                "rt_quiet)\n", 100 * one.idle_share);
-        printf("  ping while busy  %.1f ms (1 task), %.1f ms (9 tasks) from its last byte to the reply; floor <= 30 ms\n",
-               one.ping_ms, ten.ping_ms);
-        printf("a lone x++ task with events (issue 21; rotation at 1 000 steps/s on input 1, noisy light on 2 and 3):\n");
+        printf("  ping while busy  %.1f ms (1 task), %.1f ms (9 tasks) from its last byte to the reply; "
+               "floor <= 30 ms\n", one.ping_ms, ten.ping_ms);
+        printf("a lone x++ task with events (issue 21; rotation at 1 000 steps/s on input 1, noisy light on 2 "
+               "and 3):\n");
         for (i = 0; i < 4; i++) {
             if (ev[i].rate < 0) {
                 printf("  %-28s no reply: the brick is deaf\n", load_name[i]);
