@@ -104,9 +104,9 @@ static inline u16 ad_raw10(u16 addr)
 }
 
 /*
- * The oldest scan not yet fed, as one sample per input. One per call, never a loop until the ring is empty: the
- * interrupt stores a scan every millisecond while an event watches an input, and were feeding one to take longer,
- * such a loop would never end. A scan the interrupt did not store (see irq.s) was one the runtime said would change
+ * The oldest scan not yet fed, as one sample per input. One per call: the main loop feeds scans until a tick comes,
+ * never until the ring is empty, since the interrupt stores a scan every millisecond while an event watches an input,
+ * and were feeding one to take longer, such a loop would never end (issue 21). A scan the interrupt did not store (see irq.s) was one the runtime said would change
  * nothing (rt_sensors_at_rest).
  */
 static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
