@@ -11,6 +11,7 @@
 	.section .text
 	.global	_rcx_timer_irq
 	.global	_rcx_sci_irq
+	.global	_rcx_irq_rts		; no code: where the tests (tests/drivers/test_h8load.c) see an interrupt end
 
 ; The FRT compare match A (FDA2, the 1 ms tick), written here because it runs a thousand times a second whatever
 ; the brick is doing. Every millisecond the motor latch takes the next byte of the pattern hal_motor worked out
@@ -125,6 +126,7 @@ _rcx_timer_irq:
 	mov.w	@r7+,r2
 	mov.w	@r7+,r1
 	mov.w	@r7+,r0
+_rcx_irq_rts:
 	rts
 
 .Lactive:

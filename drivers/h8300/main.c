@@ -14,10 +14,17 @@
  * tick, and a lone task does not pay for the loop's checks every few byte codes. */
 #define RUN_BUDGET 0xFFFF
 
-/* Milliseconds handled per main-loop pass, and the backlog at which time is given up: if the per-millisecond work
- * ever takes longer than a millisecond, byte codes and IR packets still get their turn and the clock runs slow,
- * instead of the loop catching up for ever. */
+/*
+ * The brick never goes deaf (issue 21, docs/timing.md): every pass of the main loop looks at the IR link and the
+ * buttons and gives rt_run() its turn, whatever the program costs. A pass feeds the scans waiting until a tick
+ * comes, one only if it costs the events on its inputs a millisecond or more, and counts up to TICKS_PER_PASS of the
+ * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time). While a scan or a millisecond is still
+ * owed the tasks get a slice of one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon
+ * back: a program that asks for more than the CPU can do gets fewer samples (the ring keeps the latest four, irq.s)
+ * and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
+ */
 #define TICKS_PER_PASS 4
+#define RUN_SLICE RCX_RUN_CHUNK
 #define TICKS_BACKLOG 100
 
 static struct rcx_brick brick;
@@ -98,35 +105,37 @@ static inline u16 ad_raw10(u16 addr)
 }
 
 /*
- * The scans stored since the last call, oldest first, as one sample per input per millisecond. A scan the
- * interrupt did not store (see irq.s) was one the runtime said would change nothing (rt_sensors_at_rest).
+ * The oldest scan not yet fed, as one sample per input. One per call: the main loop feeds scans until a tick comes,
+ * never until the ring is empty, since the interrupt stores a scan every millisecond while an event watches an input,
+ * and were feeding one to take longer, such a loop would never end (issue 21). A scan the interrupt did not store (see irq.s) was one the runtime said would change
+ * nothing (rt_sensors_at_rest).
  */
-static RCX_HIGH_CODE __attribute__((noinline)) void feed_samples(void)
+static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
-    u8 i, seen, done;
+    u8 i, seen = drv_ad_seen, done;
+    const volatile u16 *slot;
 
-    while ((seen = drv_ad_seen) != (done = drv_ad_done)) {
-        const volatile u16 *slot;
-
-        if ((u8)(done - seen) >= DRV_AD_SLOTS * DRV_AD_SLOT) /* the oldest slot may be rewritten any moment: */
-            seen = (u8)(done - (DRV_AD_SLOTS - 1) * DRV_AD_SLOT); /* skipped */
-        slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
-        /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
-        p = s + 3;
-        i = 3;
-        h8_irq_disable();
-        do
-            *--p = *slot++;
-        while (--i);
-        h8_irq_enable();
-        for (i = 0; i < 3; i++)
-            rt_sensor_sample(&brick, i, ad_raw10(*p++));
-        rt_sensors_at_rest(&brick);
-        /* Only now: the interrupt compares a scan with this one only once it has been fed. */
-        drv_ad_seen = (u8)(seen + DRV_AD_SLOT);
-    }
+    /* With the interrupt held off, every slot may be read: the one it would rewrite next too (all four scans kept),
+     * and if it has rewritten the oldest already, that one is skipped. */
+    h8_irq_disable();
+    done = drv_ad_done;
+    if ((u8)(done - seen) > DRV_AD_SLOTS * DRV_AD_SLOT)
+        seen = (u8)(done - DRV_AD_SLOTS * DRV_AD_SLOT);
+    slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
+    /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
+    p = s + 3;
+    i = 3;
+    do
+        *--p = *slot++;
+    while (--i);
+    h8_irq_enable();
+    for (i = 0; i < 3; i++)
+        rt_sensor_sample(&brick, i, ad_raw10(*p++));
+    rt_sensors_at_rest(&brick);
+    /* Only now: the interrupt compares a scan with this one only once it has been fed. */
+    drv_ad_seen = (u8)(seen + DRV_AD_SLOT);
 }
 
 /* The battery: averaged over 8 samples, steadier, and one conversion to millivolts instead of many; a sample every
@@ -155,12 +164,10 @@ static __attribute__((noinline)) void buttons_changed(void)
             rt_button(&brick, i, (u8)(buttons.state & bit)); /* non-zero: down */
 }
 
-/* One millisecond of the runtime: the samples, the buttons, then the clock. Inline in the main loop, which runs it a
- * thousand times a second: the buttons' work, rarely needed, is a call of its own. */
+/* One millisecond of the runtime: the buttons, then the clock. Inline in the main loop, which runs it a thousand
+ * times a second: the buttons' work, rarely needed, is a call of its own. */
 static inline void millisecond(void)
 {
-    if (drv_ad_seen != drv_ad_done)
-        feed_samples();
     /* The same pins as last time, and no change being timed: the debounced state is what they show. */
     if (BUTTON_PINS() != button_pins || buttons.cand)
         buttons_changed();
@@ -180,7 +187,7 @@ static __attribute__((noinline)) u8 quiet_ms(void)
 
 int main(void)
 {
-    u8 seen, i, quiet = 0;
+    u8 seen, i, owed, step, quiet = 0;
 
     /* No code: the arena's size as an absolute symbol, for drivers/size.sh and the free-memory check. */
     __asm__ __volatile__(".global\t_rcx_arena_size\n\t.set\t_rcx_arena_size, %c0" ::"i"(sizeof brick.vm.arena));
@@ -218,26 +225,44 @@ int main(void)
             rt_skip(&brick, i);
             seen = (u8)(seen + i);
         }
+        /* The scans waiting, until a tick comes (so at least one, and one only if it costs a millisecond or
+         * more), then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events, the display's
+         * frame every other step) has a pass of its own, without scans: the two costliest parts of a pass are never
+         * added up. */
+        step = seen != drv_ms_ticks && brick.vm.ms == 9;
+        if (!step) {
+            i = drv_ms_ticks;
+            while (drv_ad_seen != drv_ad_done) {
+                feed_scan();
+                if (drv_ms_ticks != i)
+                    break;
+            }
+        }
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
+            if (brick.vm.ms == 9 && !step) /* a step's end, in a pass that may have fed scans or ticked */
+                break;
             if (!(u8)(++seen & BATTERY_EVERY))
                 battery_sample();
             millisecond();
+            if (step)
+                break;
         }
-        /* Cleared before the clock is read: a tick from now on ends the run. */
+        /* Cleared before the clock is read: a tick from now on ends the run. Run even when milliseconds or a scan
+         * are still owed: commands are answered and the tasks get a slice in every pass. */
         brick.vm.yield = 0;
-        if (seen != drv_ms_ticks)
-            continue;
+        owed = seen != drv_ms_ticks || drv_ad_seen != drv_ad_done;
         /* Tasks run on through quiet milliseconds: the tick interrupt lets that many pass without ending the run
          * (rcx.yield) as long as they start nothing that needs the clock (irq.s), and an interrupt that leaves
          * work ends it. Not this time if such an interrupt came since the inputs were read: rcx.yield, which it
          * set, was cleared above, but drv_woken tells. */
         quiet = brick.vm.runmask && !drv_woken ? quiet_ms() : 0;
         drv_quiet = quiet;
-        /* Nothing ran: sleep until the next interrupt (at most 1 ms away), which saves the batteries. Through quiet
-         * milliseconds it sleeps on, as long as no sample or byte comes in. In both cases the milliseconds are
-         * counted at once above, all but the last, which rt_tick() takes as usual. The buttons are looked at then:
-         * a press is seen at most 9 ms later, and the debouncing times it as before from there. */
-        if (!rt_run(&brick, RUN_BUDGET) && seen == drv_ms_ticks) {
+        /* Nothing ran and nothing is owed (a scan left for the next pass must not wait out a sleep): sleep until
+         * the next interrupt (at most 1 ms away), which saves the batteries. Through quiet milliseconds it sleeps
+         * on, as long as no sample or byte comes in. In both cases the milliseconds are counted at once above, all
+         * but the last, which rt_tick() takes as usual. The buttons are looked at then: a press is seen at most
+         * 9 ms later, and the debouncing times it as before from there. */
+        if (!rt_run(&brick, owed ? RUN_SLICE : RUN_BUDGET) && !owed && seen == drv_ms_ticks) {
             quiet = quiet_ms();
             do
                 h8_sleep();

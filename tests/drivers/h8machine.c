@@ -682,3 +682,15 @@ int h8m_download_task(struct h8machine *m, uint8_t n, const uint8_t *code, unsig
         return -1;
     return 0;
 }
+
+uint16_t h8m_rotation_raw(unsigned long long step)
+{
+    static const uint16_t level[4] = { 1000, 860, 400, 640 };
+    return level[step & 3];
+}
+
+uint16_t h8m_light_sweep_raw(unsigned long long ms)
+{
+    unsigned p = (unsigned)(ms % 400), noise = ((uint32_t)ms * 2654435761u >> 24) % 41;
+    return (uint16_t)((p < 200 ? 300 + 3 * p : 900 - 3 * (p - 200)) + noise - 20);
+}

@@ -128,4 +128,10 @@ int h8m_transact(struct h8machine *m, const uint8_t *cmd, unsigned n, uint8_t *r
  * opcodes alternate their toggle bit as a host's repeats must. 0 on success (both replies 0). */
 int h8m_download_task(struct h8machine *m, uint8_t n, const uint8_t *code, unsigned len);
 
+/* Inputs that change every millisecond (issue 21), as raw10 values for ad_input: a rotation sensor `step` steps on
+ * (phases 0-1-2-3 by level, rcx-hardware.md §3.3), and a light sensor at millisecond `ms` of a sweep from 300 to 900
+ * and back in 400 ms, with noise of +-20 each millisecond. */
+uint16_t h8m_rotation_raw(unsigned long long step);
+uint16_t h8m_light_sweep_raw(unsigned long long ms);
+
 #endif
