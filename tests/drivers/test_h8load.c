@@ -1,6 +1,5 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
- * SPDX-License-Identifier: MPL-2.0
- *
  * Issue 21 items 2 and 3, the whole image in the simulated brick (h8machine.h) under the heaviest load a program
  * can set up: the brick never goes deaf. Whatever the program asks, the clock keeps time, IR is answered, and the
  * main loop comes back to the IR link and the buttons within SERVICE_GAP_MAX; the tick interrupt stays within
