@@ -65,6 +65,7 @@ struct sim_event {                 /* one line of the --script file */
 };
 
 struct panel;
+struct world;
 
 struct sim {
     struct room room;              /* the IR room; its clock is the simulation's */
@@ -78,6 +79,8 @@ struct sim {
     unsigned rate;                 /* byte codes per ms; 0 = the brick model */
     int quit;
     struct panel *panel;           /* the browser panel (--panel), or NULL */
+    struct world *world;           /* the robots' world (--world), or NULL: owned here, swapped by sim_world_set */
+    unsigned world_trace_ms;       /* poses go into the trace every this many ms */
 };
 
 /* rom.c */
@@ -100,6 +103,12 @@ extern const char *const sim_button_names[SIM_BUTTONS]; /* by enum rt_button */
 int script_load(struct sim *s, const char *path);
 int sim_word_index(const char *w, const char *const *list, int n);
 int sim_parse_number(const char *w, long lo, long hi, long *out); /* decimal, within lo-hi; 0 = good */
+
+/* sim_world.c: the world's hooks. Called once per simulated millisecond before the bricks step: outputs to the
+ * world, one physics millisecond, A/D values back, poses into the trace. */
+void sim_world_step(struct sim *s);
+/* Replace the world (the panel's scene switch); the old one is freed. The bricks keep running. */
+void sim_world_set(struct sim *s, struct world *w);
 
 #define sim_brick_of(rcx) ((struct sim_brick *)(void *)(rcx))
 
