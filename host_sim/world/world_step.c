@@ -71,7 +71,10 @@ static void add_robot(struct world *w, int i)
         struct world_sensor *s = &r->sensor[k];
         if (s->kind != SENSOR_TOUCH)
             continue;
-        s->shape = cpSpaceAddShape(w->space, cpCircleShapeNew(r->body, s->r, cpv(s->x, s->y)));
+        s->shape = cpSpaceAddShape(w->space,
+                                   s->w > 0 ? cpBoxShapeNew2(r->body, cpBBNew(s->x - s->r, s->y - s->w / 2, s->x + s->r,
+                                                                             s->y + s->w / 2), 0)
+                                            : cpCircleShapeNew(r->body, s->r, cpv(s->x, s->y)));
         cpShapeSetSensor(s->shape, cpTrue);
         cpShapeSetFilter(s->shape, own);
         cpShapeSetCollisionType(s->shape, TOUCH_COLLISION);
