@@ -30,7 +30,7 @@ struct world_floor {
 
 struct world_sensor {
     enum world_sensor_kind kind;
-    double x, y, r;                /* robot frame, mm; r: light spot radius, or touch reach (a disc, or a bar's half depth) */
+    double x, y, r;                /* robot frame, mm; r: light spot radius, or touch reach (half the bar's depth) */
     double w;                      /* touch: the bumper bar's width across the robot (0: a disc of radius r) */
     int wheel;                     /* rotation: 0 left, 1 right axle */
     double gear;                   /* rotation: sensor turns per wheel turn */
