@@ -208,6 +208,7 @@ BAD = {
     "outside.json": "outside the",
     "not_json.json": "not valid JSON (line 3)",
     "no_robots.json": "\"robots\" must be a list",
+    "robot_file.json": "robot_bad.json: its keys: unknown key \"x\"",  # a robot file's keys: no pose
 }
 
 
@@ -215,6 +216,8 @@ def test_bad_scenes():
     """Each broken scene is refused before anything runs: exit status 2, one line on the standard error naming the
     file and the problem, nothing on the standard output."""
     for name, says in sorted(BAD.items()):
+        if name == "robot_bad.json":
+            continue
         path = os.path.join(HERE, "bad", name)
         p = subprocess.run([RCXSIM, "--world", path, "--fast", "--duration", "10"], capture_output=True, text=True,
                            timeout=30)
