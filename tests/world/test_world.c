@@ -132,6 +132,44 @@ static void light_noise_is_seeded(void **state)
     world_free(b);
 }
 
+static double robot_y(const struct world *w)
+{
+    char pose[256];
+    double x, y, h;
+    assert_true(world_robot_pose(w, 0, pose, sizeof pose) > 0);
+    assert_int_equal(sscanf(pose, "\"robot\":0,\"x\":%lf,\"y\":%lf,\"h\":%lf", &x, &y, &h), 3);
+    return y;
+}
+
+/* From full speed northwards (271 mm/s): floating, the robot rolls on against the rolling resistance alone (0.03 g:
+ * v^2 / 2a = 125 mm); braked, the shorted motors stop it within the tyres' grip (0.64 g: 6 mm). */
+static void float_coasts_and_brake_stops(void **state)
+{
+    char path[4096], err[512];
+    struct world *w;
+    struct world_brick_io io = { .motor = { FWD7, 0, FWD7 } };
+    int mode;
+    (void)state;
+    snprintf(path, sizeof path, "%s/odometry.json", TESTS_WORLD_DIR);
+    for (mode = 0; mode <= 3; mode += 3) {
+        double y0, y1;
+        w = world_load(path, err, sizeof err);
+        assert_non_null(w);
+        assert_int_equal(world_place(w, 1, 0, 1000, 20, 90), 0);
+        io.motor[0] = io.motor[2] = FWD7;
+        steps(w, &io, 1, 1000);
+        y0 = robot_y(w);
+        io.motor[0] = io.motor[2] = (unsigned char)(mode << 3 | 7);
+        steps(w, &io, 1, 2000);
+        y1 = robot_y(w);
+        if (mode == 0)
+            assert_true(y1 - y0 > 100 && y1 - y0 < 150);
+        else
+            assert_true(y1 - y0 > 2 && y1 - y0 < 10);
+        world_free(w);
+    }
+}
+
 static void placing_checks_the_floor_and_the_index(void **state)
 {
     struct world *w = load("arena.json");
@@ -215,6 +253,7 @@ int main(void)
         cmocka_unit_test(bumpers_press_on_a_wall_only),
         cmocka_unit_test(rotation_counts_sixteen_a_turn_forwards),
         cmocka_unit_test(light_noise_is_seeded),
+        cmocka_unit_test(float_coasts_and_brake_stops),
         cmocka_unit_test(placing_checks_the_floor_and_the_index),
         cmocka_unit_test(scene_json_has_the_panel_shapes),
         cmocka_unit_test(floor_picture_replaced_or_refused),

@@ -15,6 +15,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import time
 
 RCXSIM = os.environ["RCXSIM"]
 NQC = os.environ.get("NQC", "nqc")
@@ -198,6 +199,37 @@ def test_two_robots():
     if moving[1] < 400 or w[1] > moving[1] + 20 or w[1] > 800:
         fail("the waiter did not drive and then stop: at %.0f mm when told, %.0f mm at the end" % (moving[1], w[1]))
     print("message at %d ms, waiter braked at %d ms at x = %.0f, rests at %.0f" % (sent[0], stops[0], moving[1], w[1]))
+
+
+def test_download():
+    """The README's demo as a user runs it: rcxsim --world testpad with a tower on a pseudo-terminal, the real nqc
+    downloads the line follower and starts it (-d ... -run), and the robot leaves its start (500, 190) along the
+    line. At --speed 10, the 100 mm it must cover take about 0.75 s of simulated time at v0 / 2."""
+    tty, trace = os.path.join(WORK, "rcx"), os.path.join(WORK, "download.jsonl")
+    sim = subprocess.Popen([RCXSIM, "--world", "testpad", "--tty", tty, "--speed", "10", "--trace", trace],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    try:
+        for _ in range(200):
+            if os.path.exists(tty) or sim.poll() is not None:
+                break
+            time.sleep(0.05)
+        if not os.path.exists(tty):
+            fail("rcxsim made no tower")
+        subprocess.run([NQC, "-S" + tty, "-TRCX2", "-d", os.path.join(HERE, "linefollow.nqc"), "-run"], check=True,
+                       timeout=60, capture_output=True)
+        for _ in range(300):
+            with open(trace) as f:
+                lines = [json.loads(l) for l in f if l.endswith("\n")]
+            moved = [q for q in poses(lines) if q[1] > 600 and abs(q[2] - 190) < 40]
+            if moved:
+                print("downloaded by nqc, started, the robot at (%.0f, %.0f) at %d ms" % (moved[0][1], moved[0][2],
+                                                                                         moved[0][0]))
+                return
+            time.sleep(0.1)
+        fail("the robot did not follow the line after nqc -d -run")
+    finally:
+        sim.terminate()
+        sim.wait(timeout=30)
 
 
 BAD = {
