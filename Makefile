@@ -13,11 +13,13 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
                /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
                /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
                /usr/lib/python3/dist-packages/selenium:python3-selenium \
-               groff:groff-base man:man-db gzip:gzip curl:curl dpkg-shlibdeps:dpkg-dev lintian:lintian
+               groff:groff-base man:man-db gzip:gzip curl:curl dpkg-shlibdeps:dpkg-dev lintian:lintian \
+               /usr/include/chipmunk/chipmunk.h:libchipmunk-dev /usr/include/cjson/cJSON.h:libcjson-dev \
+               /usr/include/png.h:libpng-dev
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host asan firmware test test-runs fuzz bench run size deb install deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test test-runs fuzz bench run world size deb install deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -80,6 +82,15 @@ bench: host firmware deps-bench
 # brick live in the browser (the URL is printed; PANEL_PORT=N for another port than 8330) until Ctrl-C.
 run: host
 	sh host_sim/demo.sh $(HOST_DIR)
+
+# A robot in a world (issue 22): the scene SCENE (default the test pad), its brick's tower at build/rcx for nqc, the
+# world and the brick in the browser at http://127.0.0.1:$(PANEL_PORT)/, in real time until Ctrl-C. Then, in another
+# terminal: nqc -Sbuild/rcx -TRCX2 -d tests/world/linefollow.nqc -run
+SCENE ?= testpad
+PANEL_PORT ?= 8330
+world: host
+	@echo "rcxsim --world $(SCENE): the tower is $(BUILD)/rcx; the panel: http://127.0.0.1:$(PANEL_PORT)/"
+	$(HOST_DIR)/rcxsim --world $(SCENE) --tty $(BUILD)/rcx --panel $(PANEL_PORT)
 
 # Image size, free program memory and ROM checksum of the firmware.
 size: firmware

@@ -54,7 +54,8 @@ static void usage(FILE *f)
           "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT
           ", 0: any port)\n"
           "  --tcp-tower [ADDR:]PORT  an IR tower over TCP facing one brick alone; once per brick (0: any port)\n"
-          "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n",
+          "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n"
+          "  --world SCENE      each brick drives a robot of the scene (a .json file or a shipped scene's name)\n",
           f);
 }
 
@@ -74,6 +75,7 @@ static const char *value_wanted(const char *option)
         { "--panel-bind", "an IPv4 or IPv6 address" },
         { "--tcp-join", "HOST:PORT of an IR hub" },
         { "--tcp-tower", "[ADDR:]PORT for a brick's tower, once per brick (at most 8)" },
+        { "--world", "a scene file or the name of a shipped scene" },
     };
     size_t i;
     for (i = 0; i < sizeof wanted / sizeof wanted[0]; i++)
@@ -198,6 +200,9 @@ static void apply(struct sim *s, const struct sim_event *ev)
     case EV_QUIT:
         s->quit = 1;
         break;
+    case EV_PLACE:
+        sim_world_place(s, ev);
+        break;
     }
 }
 
@@ -284,6 +289,7 @@ static int run(struct sim *s, sim_us duration)
                 apply(s, &in[k]);
             panel_sync(s->panel, s, n);
         }
+        sim_world_step(s);
         for (i = 0; i < s->nbricks; i++)
             step(s, s->brick[i]);
         if (duration && s->room.now >= duration)
@@ -300,7 +306,7 @@ int main(int argc, char **argv)
     static struct sim sim;
     struct sim *s = &sim;
     const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL, *panel_bind = "127.0.0.1";
-    const char *tcp = NULL, *tcp_join = NULL, *tcp_towers[SIM_MAX_BRICKS];
+    const char *tcp = NULL, *tcp_join = NULL, *tcp_towers[SIM_MAX_BRICKS], *world = NULL;
     int ntcp_towers = 0, nttys = 0, nloads = 0, rom = 0, i, status = 0;
     long panel_port = -1;
     sim_us duration = 0;
@@ -353,6 +359,8 @@ int main(int argc, char **argv)
                 tcp_join = v;
             } else if (strcmp(a, "--tcp-tower") == 0 && ntcp_towers < SIM_MAX_BRICKS) {
                 tcp_towers[ntcp_towers++] = v;
+            } else if (strcmp(a, "--world") == 0) {
+                world = v;
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
                 duration = (sim_us)atol(v) * 1000;
             } else {
@@ -365,6 +373,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "rcxsim: --tcp and --tcp-join: the room is either the hub or joins one\n");
         return 2;
     }
+    if (world && sim_world_open(s, world))
+        return 2;
     if (nttys > s->nbricks || ntcp_towers > s->nbricks) {
         fprintf(stderr, "rcxsim: %s: %d given, more than the %d brick%s (--bricks N)\n",
                 nttys > s->nbricks ? "--tty" : "--tcp-tower", nttys > s->nbricks ? nttys : ntcp_towers, s->nbricks,
@@ -438,6 +448,7 @@ int main(int argc, char **argv)
         fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->room.now / 1000,
                 s->quit ? "quit" : stop_signal ? "signal" : "duration");
     room_close(&s->room);
+    sim_world_set(s, NULL);
     if (s->trace && s->trace != stdout)
         fclose(s->trace);
     free(s->events);

@@ -59,13 +59,15 @@ struct sim_brick {
 struct sim_event {                 /* one line of the --script file */
     sim_us at;
     int brick;
-    enum { EV_SENSOR, EV_BUTTON, EV_BATTERY, EV_IR, EV_QUIT } kind;
+    enum { EV_SENSOR, EV_BUTTON, EV_BATTERY, EV_IR, EV_QUIT, EV_PLACE } kind;
     int a, b;
+    double pose[3];                /* EV_PLACE: x, y (mm), heading (degrees) of robot (a = 1) or obstacle b */
     unsigned char bytes[256];
     int nbytes;
 };
 
 struct panel;
+struct world;
 
 struct sim {
     struct room room;              /* the IR room; its clock is the simulation's */
@@ -79,6 +81,7 @@ struct sim {
     unsigned rate;                 /* byte codes per ms; 0 = the brick model */
     int quit;
     struct panel *panel;           /* the browser panel (--panel), or NULL */
+    struct world *world;           /* the robots' world (--world), or NULL: owned here, swapped by sim_world_set */
 };
 
 /* rom.c */
@@ -101,6 +104,16 @@ extern const char *const sim_button_names[SIM_BUTTONS]; /* by enum rt_button */
 int script_load(struct sim *s, const char *path);
 int sim_word_index(const char *w, const char *const *list, int n);
 int sim_parse_number(const char *w, long lo, long hi, long *out); /* decimal, within lo-hi; 0 = good */
+
+/* sim_world.c: the world's hooks. Called once per simulated millisecond before the bricks step: outputs to the
+ * world, one physics millisecond, A/D values back, poses into the trace. */
+void sim_world_step(struct sim *s);
+/* Replace the world (the panel's scene switch); the old one is freed. The bricks keep running. */
+void sim_world_set(struct sim *s, struct world *w);
+/* --world SCENE: a scene file, or the name of a shipped one; at least as many bricks as its robots need. 0 ok, else
+ * one line on the standard error. */
+int sim_world_open(struct sim *s, const char *scene);
+void sim_world_place(struct sim *s, const struct sim_event *ev);
 
 #define sim_brick_of(rcx) ((struct sim_brick *)(void *)(rcx))
 
