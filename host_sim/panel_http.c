@@ -39,6 +39,7 @@ static const struct {
     { "/index.html", "index.html", "text/html; charset=utf-8" },
     { "/panel.css", "panel.css", "text/css; charset=utf-8" },
     { "/panel.js", "panel.js", "text/javascript; charset=utf-8" },
+    { "/world.js", "world.js", "text/javascript; charset=utf-8" },
     { "/brick.svg", "brick.svg", "image/svg+xml" },
 };
 

@@ -16,7 +16,8 @@ field Depends | grep -q 'libmicrohttpd[0-9]* (>= ' || fail "Depends lacks libmic
 "$DPKG_DEB" -c "$DEB" | awk '{ print $1, $6 }' >"$WORK/list"
 for f in ./usr/bin/rcxsim ./usr/share/openrcx/openrcx.srec ./usr/share/openrcx/openrcx.lgo \
     ./usr/share/openrcx/panel/index.html ./usr/share/openrcx/panel/panel.js ./usr/share/openrcx/panel/panel.css \
-    ./usr/share/openrcx/panel/brick.svg ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
+    ./usr/share/openrcx/panel/brick.svg ./usr/share/openrcx/panel/world.js \
+    ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
     ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/copyright ./usr/share/doc/openrcx/changelog.gz; do
     grep -q " $f\$" "$WORK/list" || fail "$f missing from the package"
 done
