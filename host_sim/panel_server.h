@@ -40,6 +40,7 @@ struct panel_world {
     unsigned long version;        /* counts changes of the scene and of the poses */
     unsigned long scene_version;  /* counts changes of the scene alone */
     struct panel_world_limits lim;
+    char current[PANEL_SCENE_NAME_MAX + 1]; /* the scene's file name in scenes_dir, "" when not known */
     char scenes_dir[4096];        /* world_scenes_dir(), asked on the simulation thread */
     struct world_request *queue, **tail;
     /* simulation thread only */

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "panel_server.h"
 #include "world/world.h"
 
@@ -133,6 +134,9 @@ static void switch_scene(struct panel *p, struct sim *s, struct world_request *r
         return;
     }
     sim_world_set(s, w);
+    pthread_mutex_lock(&p->lock);
+    strcpy(p->world.current, r->scene);
+    pthread_mutex_unlock(&p->lock);
     r->status = MHD_HTTP_NO_CONTENT;
 }
 
@@ -164,6 +168,17 @@ static void apply(struct panel *p, struct sim *s, struct world_request *r)
     }
 }
 
+/* The scene rcxsim started with was named on its command line, which the panel does not see: its name in the JSON,
+ * when a shipped scene has that file name, is the best guess; else the page shows no scene of the list as current. */
+static void current_guess(struct panel_world *pw)
+{
+    char path[sizeof pw->scenes_dir + PANEL_SCENE_NAME_MAX + 8];
+
+    snprintf(path, sizeof path, "%s/%s.json", pw->scenes_dir, pw->lim.scene);
+    if (pw->lim.scene[0] && access(path, R_OK) == 0)
+        strcpy(pw->current, pw->lim.scene);
+}
+
 void panel_world_start(struct panel *p, struct sim *s)
 {
     struct panel_world *pw = &p->world;
@@ -175,6 +190,7 @@ void panel_world_start(struct panel *p, struct sim *s)
     snprintf(pw->scenes_dir, sizeof pw->scenes_dir, "%s", world_scenes_dir());
     copy_scene(p, s->world);
     copy_poses(p, s->world);
+    current_guess(pw);
     clock_gettime(CLOCK_MONOTONIC, &pw->pose_at);
 }
 

@@ -55,7 +55,7 @@ static enum MHD_Result get(struct panel *p, struct MHD_Connection *c, const char
         if (!json)
             return MHD_NO;
         pthread_mutex_lock(&p->lock);
-        len = panel_scene_list_json(pw->scenes_dir, pw->lim.scene, json, SCENES_JSON_MAX);
+        len = panel_scene_list_json(pw->scenes_dir, pw->current, json, SCENES_JSON_MAX);
         pthread_mutex_unlock(&p->lock);
         if (!len) {
             free(json);

@@ -91,7 +91,11 @@ async function listScenes() {
     const r = await fetch("world/scenes");
     if (!r.ok) return;
     const list = await r.json(), select = document.getElementById("scene");
-    select.replaceChildren(...list.scenes.map(name => new Option(name, name, false, name === list.current)));
+    const options = list.scenes.map(name => new Option(name, name, false, name === list.current));
+    if (!list.scenes.includes(list.current)) // started from a file of its own: named as the scene names itself
+        options.unshift(new Option(world.scene.scene, "", true, true));
+    select.replaceChildren(...options);
+    if (options[0].value === "") options[0].disabled = true;
 }
 
 // ---- the poses ----
