@@ -12,7 +12,9 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
                /usr/lib/llvm-14/lib/clang/14.0.6/lib/linux/libclang_rt.fuzzer-x86_64.a:libclang-rt-14-dev \
                /usr/include/microhttpd.h:libmicrohttpd-dev chromium:chromium chromedriver:chromium-driver \
                /usr/lib/python3/dist-packages/selenium:python3-selenium \
-               groff:groff-base man:man-db gzip:gzip curl:curl dpkg-shlibdeps:dpkg-dev lintian:lintian
+               groff:groff-base man:man-db gzip:gzip curl:curl dpkg-shlibdeps:dpkg-dev lintian:lintian \
+               /usr/include/chipmunk/chipmunk.h:libchipmunk-dev /usr/include/cjson/cJSON.h:libcjson-dev \
+               /usr/include/png.h:libpng-dev
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 

@@ -5,6 +5,7 @@
  *   <ms> [@<brick>] battery <mV>
  *   <ms> ir <hex bytes>            (sent into the room at 2400 baud, as a remote control would)
  *   <ms> quit
+ *   <ms> place <robot|obstacle> <index> <x mm> <y mm> <heading degrees>   (with --world: moves it there)
  * Lines may come in any order; events at the same time keep their order.
  */
 #include <errno.h>
@@ -44,7 +45,8 @@ int sim_parse_number(const char *w, long lo, long hi, long *out)
 
 static int parse_line(struct sim *s, char *text, struct sim_event *ev, const char *path, int line)
 {
-    static const char *const kinds[] = { "sensor", "button", "battery", "ir", "quit" };
+    static const char *const kinds[] = { "sensor", "button", "battery", "ir", "quit", "place" };
+    static const char *const things[] = { "obstacle", "robot" };
     static const char *const edges[] = { "up", "down" };
     char *w[300];
     int n = 0, k, at = 1;
@@ -64,8 +66,8 @@ static int parse_line(struct sim *s, char *text, struct sim_event *ev, const cha
         ev->brick = (int)v;
         at = 2;
     }
-    if (at >= n || (k = sim_word_index(w[at], kinds, 5)) < 0)
-        return fail(path, line, "expected sensor, button, battery, ir or quit");
+    if (at >= n || (k = sim_word_index(w[at], kinds, 6)) < 0)
+        return fail(path, line, "expected sensor, button, battery, ir, quit or place");
     ev->kind = k;
     switch (ev->kind) {
     case EV_SENSOR:
@@ -100,6 +102,20 @@ static int parse_line(struct sim *s, char *text, struct sim_event *ev, const cha
     case EV_QUIT:
         if (n != at + 1)
             return fail(path, line, "expected nothing after quit");
+        break;
+    case EV_PLACE:
+        if (!s->world)
+            return fail(path, line, "place needs --world");
+        if (n != at + 6 || (ev->a = sim_word_index(w[at + 1], things, 2)) < 0 ||
+            sim_parse_number(w[at + 2], 0, 63, &v))
+            return fail(path, line, "expected: place <robot|obstacle> <index> <x mm> <y mm> <heading degrees>");
+        ev->b = (int)v;
+        for (k = 0; k < 3; k++) {
+            char *end;
+            ev->pose[k] = strtod(w[at + 3 + k], &end);
+            if (*end || end == w[at + 3 + k] || !(ev->pose[k] > -1e6 && ev->pose[k] < 1e6))
+                return fail(path, line, "expected numbers for x, y and heading");
+        }
         break;
     }
     return 1;

@@ -52,7 +52,8 @@ static void usage(FILE *f)
           "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n"
           "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT
           ", 0: any port)\n"
-          "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n",
+          "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n"
+          "  --world SCENE      each brick drives a robot of the scene (a .json file or a shipped scene's name)\n",
           f);
 }
 
@@ -71,6 +72,7 @@ static const char *value_wanted(const char *option)
         { "--panel", "a port, 0-65535" },
         { "--panel-bind", "an IPv4 or IPv6 address" },
         { "--tcp-join", "HOST:PORT of an IR hub" },
+        { "--world", "a scene file or the name of a shipped scene" },
     };
     size_t i;
     for (i = 0; i < sizeof wanted / sizeof wanted[0]; i++)
@@ -195,6 +197,9 @@ static void apply(struct sim *s, const struct sim_event *ev)
     case EV_QUIT:
         s->quit = 1;
         break;
+    case EV_PLACE:
+        sim_world_place(s, ev);
+        break;
     }
 }
 
@@ -281,6 +286,7 @@ static int run(struct sim *s, sim_us duration)
                 apply(s, &in[k]);
             panel_sync(s->panel, s, n);
         }
+        sim_world_step(s);
         for (i = 0; i < s->nbricks; i++)
             step(s, s->brick[i]);
         if (duration && s->room.now >= duration)
@@ -297,7 +303,7 @@ int main(int argc, char **argv)
     static struct sim sim;
     struct sim *s = &sim;
     const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL, *panel_bind = "127.0.0.1";
-    const char *tcp = NULL, *tcp_join = NULL;
+    const char *tcp = NULL, *tcp_join = NULL, *world = NULL;
     int nttys = 0, nloads = 0, rom = 0, i, status = 0;
     long panel_port = -1;
     sim_us duration = 0;
@@ -348,6 +354,8 @@ int main(int argc, char **argv)
                 panel_bind = v;
             } else if (strcmp(a, "--tcp-join") == 0) {
                 tcp_join = v;
+            } else if (strcmp(a, "--world") == 0) {
+                world = v;
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
                 duration = (sim_us)atol(v) * 1000;
             } else {
@@ -360,6 +368,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "rcxsim: --tcp and --tcp-join: the room is either the hub or joins one\n");
         return 2;
     }
+    if (world && sim_world_open(s, world))
+        return 2;
     if (nttys > s->nbricks) {
         fprintf(stderr, "rcxsim: --tty: %d given, more than the %d brick%s (--bricks N)\n", nttys, s->nbricks,
                 s->nbricks == 1 ? "" : "s");
@@ -418,6 +428,7 @@ int main(int argc, char **argv)
         fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->room.now / 1000,
                 s->quit ? "quit" : stop_signal ? "signal" : "duration");
     room_close(&s->room);
+    sim_world_set(s, NULL);
     if (s->trace && s->trace != stdout)
         fclose(s->trace);
     free(s->events);

@@ -58,8 +58,9 @@ struct sim_brick {
 struct sim_event {                 /* one line of the --script file */
     sim_us at;
     int brick;
-    enum { EV_SENSOR, EV_BUTTON, EV_BATTERY, EV_IR, EV_QUIT } kind;
+    enum { EV_SENSOR, EV_BUTTON, EV_BATTERY, EV_IR, EV_QUIT, EV_PLACE } kind;
     int a, b;
+    double pose[3];                /* EV_PLACE: x, y (mm), heading (degrees) of robot (a = 1) or obstacle b */
     unsigned char bytes[256];
     int nbytes;
 };
@@ -80,7 +81,6 @@ struct sim {
     int quit;
     struct panel *panel;           /* the browser panel (--panel), or NULL */
     struct world *world;           /* the robots' world (--world), or NULL: owned here, swapped by sim_world_set */
-    unsigned world_trace_ms;       /* poses go into the trace every this many ms */
 };
 
 /* rom.c */
@@ -109,6 +109,10 @@ int sim_parse_number(const char *w, long lo, long hi, long *out); /* decimal, wi
 void sim_world_step(struct sim *s);
 /* Replace the world (the panel's scene switch); the old one is freed. The bricks keep running. */
 void sim_world_set(struct sim *s, struct world *w);
+/* --world SCENE: a scene file, or the name of a shipped one; at least as many bricks as its robots need. 0 ok, else
+ * one line on the standard error. */
+int sim_world_open(struct sim *s, const char *scene);
+void sim_world_place(struct sim *s, const struct sim_event *ev);
 
 #define sim_brick_of(rcx) ((struct sim_brick *)(void *)(rcx))
 

@@ -57,6 +57,9 @@ int world_set_floor_png(struct world *w, const unsigned char *png, size_t len, c
 /* Move robot/obstacle `index` (is_robot 1/0) to a pose; 0 ok, -1 bad index or outside the floor. */
 int world_place(struct world *w, int is_robot, int index, double x_mm, double y_mm, double heading_deg);
 
+/* Robot i's pose as JSON members for the trace, "robot":i,"x":..,"y":..,"h":.. (no braces); 0 if it does not fit. */
+size_t world_robot_pose(const struct world *w, int i, char *buf, size_t size);
+
 /* The folder of the shipped scenes, found like panel_files_dir(). */
 const char *world_scenes_dir(void);
 
