@@ -118,6 +118,7 @@ static void switch_scene(struct panel *p, struct sim *s, struct world_request *r
 {
     char path[sizeof p->world.scenes_dir + PANEL_SCENE_NAME_MAX + 8], err[200];
     struct world *w;
+    int i;
 
     snprintf(path, sizeof path, "%s/%s.json", p->world.scenes_dir, r->scene);
     w = world_load(path, err, sizeof err);
@@ -126,13 +127,14 @@ static void switch_scene(struct panel *p, struct sim *s, struct world_request *r
         snprintf(r->why, sizeof r->why, "scene %s: %s", r->scene, err);
         return;
     }
-    if (world_robots(w) > s->nbricks) {
-        r->status = MHD_HTTP_CONFLICT;
-        snprintf(r->why, sizeof r->why, "scene %s has %d robots and rcxsim runs %d bricks (--bricks)", r->scene,
-                 world_robots(w), s->nbricks);
-        world_free(w);
-        return;
-    }
+    for (i = 0; i < world_robots(w); i++)
+        if (world_robot_brick(w, i) >= s->nbricks) {
+            r->status = MHD_HTTP_CONFLICT;
+            snprintf(r->why, sizeof r->why, "scene %s: robot %d needs brick %d, rcxsim runs %d (--bricks)", r->scene,
+                     i, world_robot_brick(w, i), s->nbricks);
+            world_free(w);
+            return;
+        }
     sim_world_set(s, w);
     pthread_mutex_lock(&p->lock);
     strcpy(p->world.current, r->scene);

@@ -25,7 +25,9 @@ const world = {
     drawn: null,          // what the last frame drew: {t, robots: [{i, x, y, h, inputs}], obstacles: [...]}
     frames: 0,
     frameTimes: [],       // wall ms of the frames of the last second
-    drawMs: 0,            // the last frame's drawing time
+    drawMs: 0,            // the last frame's drawing time...
+    drawTotal: 0,         // ...all frames' together...
+    drawMax: 0,           // ...and the longest
     drag: null,           // {kind: "robot"|"obstacle", i, dx, dy, x, y, h, until}
     held: {},             // poses the pointer holds, by "robot 0": shown until rcxsim's poses agree
     scale: 1,             // canvas CSS px per mm
@@ -64,9 +66,30 @@ function fitCanvas() {
     c.style.height = `${Math.round(s.floor.h * world.scale)}px`;
     c.width = Math.round(s.floor.w * world.scale * dpr);
     c.height = Math.round(s.floor.h * world.scale * dpr);
-    world.trailLayer = document.createElement("canvas");
-    world.trailLayer.width = c.width;
-    world.trailLayer.height = c.height;
+    paintBackground();
+}
+
+// What does not move, drawn once into a canvas of its own that each frame copies: the floor picture, the walls,
+// and the trails, which addTrailPoints() draws on as the poses come. A new picture or size starts it again.
+function paintBackground() {
+    const c = canvas(), s = world.scene, k = world.scale * (window.devicePixelRatio || 1);
+    const layer = world.background = document.createElement("canvas");
+    layer.width = c.width;
+    layer.height = c.height;
+    const g = layer.getContext("2d");
+    g.fillStyle = "#ffffff";
+    g.fillRect(0, 0, c.width, c.height);
+    if (world.floor) g.drawImage(world.floor, 0, 0, c.width, c.height); // the picture's top row is the far side
+    g.setTransform(k, 0, 0, -k, 0, c.height); // millimetres, y up
+    g.strokeStyle = "#495057";
+    g.lineCap = "square";
+    for (const w of s.walls) {
+        g.lineWidth = w.t || 10;
+        g.beginPath();
+        g.moveTo(w.x1, w.y1);
+        g.lineTo(w.x2, w.y2);
+        g.stroke();
+    }
     world.trails = [];
 }
 
@@ -75,8 +98,8 @@ function setScene(scene) {
     world.scene = scene;
     world.held = {};
     const img = new Image();
-    img.onload = () => { if (world.scene === scene) world.floor = img; };
-    img.onerror = () => { if (world.scene === scene) world.floor = null; };
+    img.onload = () => { if (world.scene === scene) { world.floor = img; paintBackground(); } };
+    img.onerror = () => { if (world.scene === scene) { world.floor = null; paintBackground(); } };
     img.src = `world/floor.png?load=${++world.floorLoads}`;
     if (renamed) {
         world.samples = [];
@@ -111,9 +134,10 @@ function addSample(pose) {
 }
 
 function addTrailPoints(robots) {
-    const layer = world.trailLayer;
+    const layer = world.background;
     if (!layer) return;
     const g = layer.getContext("2d"), k = world.scale * (window.devicePixelRatio || 1), H = world.scene.floor.h;
+    g.setTransform(1, 0, 0, 1, 0, 0);
     for (const r of robots) {
         const last = world.trails[r.i];
         const d = last ? Math.hypot(r.x - last.x, r.y - last.y) : Infinity;
@@ -243,20 +267,8 @@ function draw(poses) {
     const c = canvas(), g = c.getContext("2d"), s = world.scene;
     const dpr = window.devicePixelRatio || 1, k = world.scale * dpr;
     g.setTransform(1, 0, 0, 1, 0, 0);
-    g.fillStyle = "#ffffff";
-    g.fillRect(0, 0, c.width, c.height);
-    if (world.floor) g.drawImage(world.floor, 0, 0, c.width, c.height); // the picture's top row is the far side
-    if (world.trailLayer) g.drawImage(world.trailLayer, 0, 0);
+    g.drawImage(world.background, 0, 0);
     g.setTransform(k, 0, 0, -k, 0, c.height); // from here on millimetres, y up, angles counter-clockwise
-    g.strokeStyle = "#495057";
-    g.lineCap = "square";
-    for (const w of s.walls) {
-        g.lineWidth = w.t || 10;
-        g.beginPath();
-        g.moveTo(w.x1, w.y1);
-        g.lineTo(w.x2, w.y2);
-        g.stroke();
-    }
     if (!poses) return;
     const obstacles = new Map(s.obstacles.map(o => [o.i, o])), robots = new Map(s.robots.map(r => [r.i, r]));
     for (const o of poses.obstacles) if (obstacles.has(o.i)) drawObstacle(g, obstacles.get(o.i), o);
@@ -285,6 +297,8 @@ function frame(now) {
     draw(poses);
     world.drawn = poses;
     world.drawMs = performance.now() - t0;
+    world.drawTotal += world.drawMs;
+    world.drawMax = Math.max(world.drawMax, world.drawMs);
     world.frames++;
     world.frameTimes.push(now);
     while (world.frameTimes.length && world.frameTimes[0] < now - 1000) world.frameTimes.shift();

@@ -41,9 +41,9 @@ def raw_exchange(sim, data, timeout=5):
         s.close()
 
 
-def open_stream(sim):
+def open_stream(sim, path="/events"):
     s = socket.create_connection((sim.host, sim.port), timeout=5)
-    s.sendall(b"GET /events HTTP/1.1\r\nHost: 127.0.0.1\r\nAccept: text/event-stream\r\n\r\n")
+    s.sendall(b"GET %s HTTP/1.1\r\nHost: 127.0.0.1\r\nAccept: text/event-stream\r\n\r\n" % path.encode())
     return s
 
 

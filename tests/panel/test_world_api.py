@@ -7,7 +7,7 @@ import struct
 import zlib
 
 from panel_lib import Sim, check, wait_for
-from test_api import next_event, open_stream, refused
+from test_api import next_event, open_stream, raw_exchange, refused
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"  # PNG specification, 5.2
 
@@ -68,7 +68,7 @@ def reads(sim):
     check(scenes["current"] == "arena", "current scene: %r" % scenes)
 
     # The stream: the scene first, as a "scene" event, then poses as plain events.
-    s = open_stream(sim)
+    s = open_stream(sim, "/world/events")
     buf = [b""]
     try:
         first = next_event(s, buf)
@@ -77,7 +77,7 @@ def reads(sim):
         check(set(second) == {"t", "robots", "obstacles"}, "then the poses: %r" % second)
     finally:
         s.close()
-    s = open_stream(sim)
+    s = open_stream(sim, "/world/events")
     try:
         got = [b""]
 
@@ -139,7 +139,14 @@ def refusals(sim):
     refused(sim, "POST", "/world/floor", 400, body=b"GIF89a" + b"\0" * 100)
     refused(sim, "POST", "/world/floor", 422, body=PNG_SIGNATURE + b"\0" * 100)  # a PNG's start, then nothing
     refused(sim, "POST", "/world/floor?x=1", 400, body=png(4, 4, (0, 0, 0)))
-    refused(sim, "POST", "/world/floor", 413, body=b"\0" * (8 * 1024 * 1024 + 1))
+    # Too large: said in the headers (refused before the body is read), or found while the chunks come.
+    head = b"POST /world/floor HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: %d\r\n\r\n" % (8 * 1024 * 1024 + 1)
+    check(raw_exchange(sim, head).startswith(b"HTTP/1.1 413 "), "a declared 8 MiB + 1 refused")
+    chunk = b"\0" * 65536
+    chunked = (b"POST /world/floor HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n" +
+               (b"10000\r\n" + chunk + b"\r\n") * 129 + b"0\r\n\r\n")
+    answer = raw_exchange(sim, chunked, timeout=20)
+    check(answer.startswith(b"HTTP/1.1 413 ") and answer.endswith(b"at most 8 MiB\n"), "chunks past 8 MiB: %r" % answer)
     refused(sim, "POST", "/world/place?robot=0&x=1&y=1&h=0", 413, body=b"x" * 100)
     check(get_json(sim, "/world/scenes")["current"] == "arena", "still the arena")
     check(sim.state()["bricks"][0]["power"] == "on", "the simulator is unharmed")
