@@ -34,8 +34,10 @@ struct panel_brick {
 
 /* panel_state.c */
 void panel_snapshot(const struct sim_brick *b, struct panel_brick *out);
-/* The JSON of GET /state; returns its length, or 0 when it does not fit in `size`. */
-size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n);
+/* The JSON of GET /state; returns its length, or 0 when it does not fit in `size`. `world`: rcxsim has one, the page
+ * then asks for it (GET /world) and shows it. */
+size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n,
+                  int world);
 
 /* panel_files.c: the folder of the page's files (index.html, ...) */
 const char *panel_files_dir(void);

@@ -155,7 +155,7 @@ static enum MHD_Result send_state(struct panel *p, struct MHD_Connection *c)
     if (!json)
         return MHD_NO;
     pthread_mutex_lock(&p->lock);
-    len = panel_json(json, PANEL_JSON_MAX, p->now_ms, p->shot, p->nbricks);
+    len = panel_json(json, PANEL_JSON_MAX, p->now_ms, p->shot, p->nbricks, p->world.on);
     pthread_mutex_unlock(&p->lock);
     if (len == 0) {
         free(json);
@@ -204,7 +204,7 @@ static size_t fill_event(struct stream *st)
 
     if (!st->world) {
         memcpy(st->buf, "data: ", 6);
-        n = panel_json(st->buf + 6, st->cap - 8, p->now_ms, p->shot, p->nbricks);
+        n = panel_json(st->buf + 6, st->cap - 8, p->now_ms, p->shot, p->nbricks, p->world.on);
         st->version = p->version;
         if (n == 0)
             return 0;

@@ -3,8 +3,8 @@
 // drawn on a canvas at the browser's frame rate. rcxsim streams the scene ("scene" events) and the poses (about 50 a
 // second) on /world/events; the page draws each frame at a simulated time a little behind the newest pose and
 // interpolates between the two poses around it, so the robots glide instead of jumping. A robot or a movable
-// obstacle is dragged with the pointer (and turned with the wheel): POST /world/place. Without --world, GET /world
-// answers 404 and nothing of this appears. Uses post() and latestOnly() of panel.js.
+// obstacle is dragged with the pointer (and turned with the wheel): POST /world/place. Without --world (GET /state
+// says "world": false) nothing of this appears. Uses post() and latestOnly() of panel.js.
 "use strict";
 
 const ROBOT_COLOURS = ["#e8590c", "#1c7ed6", "#2f9e44", "#ae3ec9", "#f08c00", "#0c8599", "#c2255c", "#5c940d"];
@@ -399,8 +399,9 @@ function pointerEvents(c) {
 // ---- start ----
 
 async function worldStart() {
+    if (!(await (await fetch("state")).json()).world) return; // rcxsim runs without --world: the page stays as it was
     const r = await fetch("world");
-    if (!r.ok) return; // rcxsim runs without --world: the page stays as it was
+    if (!r.ok) return;
     document.getElementById("world").hidden = false;
     setScene(await r.json());
     pointerEvents(canvas());

@@ -74,6 +74,7 @@ def _is_chunk_size(part):
 
 def test_state_and_inputs(sim):
     wait_for("the sweep of --load to end", lambda: brick0(sim)["sound"] == 0)
+    check(sim.state()["world"] is False, "no world without --world")
     b = brick0(sim)
     for key in ("motors", "lcd", "num", "prog", "sound", "sensors", "buttons", "battery", "slot", "tasks", "ir"):
         check(key in b, "state lacks %s" % key)

@@ -53,6 +53,7 @@ def without_world():
 
 
 def reads(sim):
+    check(sim.state()["world"] is True, "GET /state tells the page there is a world")
     scene = get_json(sim, "/world")
     check(scene["floor"]["w"] == 1500 and scene["floor"]["h"] == 1200, "the arena's floor: %r" % scene["floor"])
     check(len(scene["walls"]) == 4 and len(scene["obstacles"]) == 4 and len(scene["robots"]) == 1, "arena: %r" % scene)
