@@ -349,7 +349,7 @@ static enum MHD_Result post_input(struct panel *p, struct MHD_Connection *c, con
     const char *const *names;
     struct panel_input in;
     struct timespec until;
-    const char *brick = panel_arg(c, "brick");
+    const char *brick = panel_arg(c, "brick"), *button = panel_arg(c, "button");
     unsigned long ticket;
     long v;
 
@@ -362,7 +362,7 @@ static enum MHD_Result post_input(struct panel *p, struct MHD_Connection *c, con
     if (strcmp(url, "/button") == 0) {
         names = button_args;
         in.kind = EV_BUTTON;
-        if (!panel_arg(c, "button") || (in.a = sim_word_index(panel_arg(c, "button"), sim_button_names, SIM_BUTTONS)) < 0)
+        if (!button || (in.a = sim_word_index(button, sim_button_names, SIM_BUTTONS)) < 0)
             return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "button: expected onoff, run, view or prgm");
         if (!panel_arg(c, "action") || (in.b = sim_word_index(panel_arg(c, "action"), actions, 2)) < 0)
             return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "action: expected down or up");

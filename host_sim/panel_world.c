@@ -243,10 +243,16 @@ size_t panel_world_event(struct panel *p, unsigned long *version, unsigned long 
     const char *json = scene ? pw->scene : pw->pose;
     size_t json_len = scene ? pw->scene_len : pw->pose_len, need = strlen(head) + json_len + 2;
 
+    if (!json) { /* the world could not write it: a comment keeps the stream open */
+        head = ": nothing yet";
+        json_len = 0;
+        need = strlen(head) + 2;
+    }
     if (need > size)
         return need; /* the caller makes room and asks again */
     memcpy(buf, head, strlen(head));
-    memcpy(buf + strlen(head), json, json_len);
+    if (json_len)
+        memcpy(buf + strlen(head), json, json_len);
     memcpy(buf + need - 2, "\n\n", 2);
     if (scene)
         *scene_version = pw->scene_version; /* the poses follow in the next event */

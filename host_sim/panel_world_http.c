@@ -26,7 +26,7 @@
 
 /* A copy of one of the world's texts, made under the lock. */
 static enum MHD_Result send_copy(struct panel *p, struct MHD_Connection *c, const void *data, size_t len,
-                                 const char *type)
+                                 const char *type, const char *missing)
 {
     void *copy = len ? malloc(len) : NULL;
 
@@ -38,7 +38,7 @@ static enum MHD_Result send_copy(struct panel *p, struct MHD_Connection *c, cons
         memcpy(copy, data, len);
     pthread_mutex_unlock(&p->lock);
     if (!len)
-        return panel_refuse(c, MHD_HTTP_NOT_FOUND, "this scene has no floor picture");
+        return panel_refuse(c, MHD_HTTP_NOT_FOUND, missing);
     return panel_send_buffer(c, copy, len, type, "no-cache");
 }
 
@@ -65,11 +65,11 @@ static enum MHD_Result get(struct panel *p, struct MHD_Connection *c, const char
     }
     pthread_mutex_lock(&p->lock);
     if (strcmp(url, "/world") == 0)
-        return send_copy(p, c, pw->scene, pw->scene_len, "application/json");
+        return send_copy(p, c, pw->scene, pw->scene_len, "application/json", "the world did not write its scene");
     if (strcmp(url, "/world/pose") == 0)
-        return send_copy(p, c, pw->pose, pw->pose_len, "application/json");
+        return send_copy(p, c, pw->pose, pw->pose_len, "application/json", "the world did not write its poses");
     if (strcmp(url, "/world/floor.png") == 0)
-        return send_copy(p, c, pw->floor, pw->floor_len, "image/png");
+        return send_copy(p, c, pw->floor, pw->floor_len, "image/png", "this scene has no floor picture");
     pthread_mutex_unlock(&p->lock);
     return panel_refuse(c, MHD_HTTP_NOT_FOUND, "no such page under /world");
 }

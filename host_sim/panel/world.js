@@ -12,7 +12,8 @@ const BODY_COLOUR = "#f5c518";       // the RCX's yellow
 const TOUCH_PRESSED_BELOW = 512;    // a pressed touch sensor pulls its input towards 0, a released one to 1023
 const PLAYBACK_DELAY_MS = 60;       // wall time the drawing stays behind the newest pose: three pose gaps
 const TRAIL_STEP_MM = 3;            // a trail takes a point once the robot moved this far...
-const TRAIL_JUMP_MM = 150;          // ...and breaks where it moved further in one pose (dragged, or a new scene)
+const TRAIL_JUMP_MM = 150;          // ...and breaks where it moved further in one pose (dragged, or a new scene)...
+const DRIVE_MM_PER_MS = 1;          // ...than it could drive in the simulated time between (a Roverbot: 0.3)
 const WHEEL_TURN_DEG = 15;
 
 const world = {
@@ -130,10 +131,15 @@ function addSample(pose) {
     while (s.length > 2 && s[s.length - 1].at - s[0].at > 1000) s.shift();
     if (s.length > 1 && s[s.length - 1].at > s[0].at)
         world.rate = Math.max(0, (s[s.length - 1].t - s[0].t) / (s[s.length - 1].at - s[0].at));
-    addTrailPoints(pose.robots);
+    addTrailPoints(pose.robots, s.length > 1 ? pose.t - s[s.length - 2].t : 0);
 }
 
-function addTrailPoints(robots) {
+// A move of d mm in dt simulated ms is a jump (a drag, another scene), not a drive.
+function jumped(d, dt) {
+    return d > TRAIL_JUMP_MM + DRIVE_MM_PER_MS * dt;
+}
+
+function addTrailPoints(robots, dt) {
     const layer = world.background;
     if (!layer) return;
     const g = layer.getContext("2d"), k = world.scale * (window.devicePixelRatio || 1), H = world.scene.floor.h;
@@ -142,7 +148,7 @@ function addTrailPoints(robots) {
         const last = world.trails[r.i];
         const d = last ? Math.hypot(r.x - last.x, r.y - last.y) : Infinity;
         if (d < TRAIL_STEP_MM) continue;
-        if (d <= TRAIL_JUMP_MM) {
+        if (!jumped(d, dt)) {
             g.strokeStyle = ROBOT_COLOURS[r.i % ROBOT_COLOURS.length];
             g.globalAlpha = 0.75;
             g.lineWidth = Math.max(1.5, 4 * k);
@@ -161,10 +167,10 @@ function lerpAngle(a, b, f) {
     return a + d * f;
 }
 
-function lerpThings(a, b, f) {
+function lerpThings(a, b, f, dt) {
     return b.map(q => {
         const p = a.find(o => o.i === q.i);
-        if (!p || Math.hypot(q.x - p.x, q.y - p.y) > TRAIL_JUMP_MM) return q; // teleported: no glide
+        if (!p || jumped(Math.hypot(q.x - p.x, q.y - p.y), dt)) return q; // no glide over a jump
         return Object.assign({}, q, { x: p.x + (q.x - p.x) * f, y: p.y + (q.y - p.y) * f, h: lerpAngle(p.h, q.h, f) });
     });
 }
@@ -188,7 +194,8 @@ function posesNow(now, dt) {
         return { t: at.t, robots: at.robots, obstacles: at.obstacles };
     }
     const a = s[k - 1], b = s[k], f = (world.playT - a.t) / (b.t - a.t);
-    return { t: world.playT, robots: lerpThings(a.robots, b.robots, f), obstacles: lerpThings(a.obstacles, b.obstacles, f) };
+    return { t: world.playT, robots: lerpThings(a.robots, b.robots, f, b.t - a.t),
+             obstacles: lerpThings(a.obstacles, b.obstacles, f, b.t - a.t) };
 }
 
 // What the pointer holds wins over what the stream says, until the stream agrees (or a second has passed).

@@ -10,8 +10,8 @@ drag:  rcxsim --world arena; the robot and a movable obstacle dragged with the p
        (the robot's pose in rcxsim's trace, the obstacle's in GET /world/pose); a fixed obstacle does not move; the
        scene picker switches to the test pad; a floor picture chosen in the file input replaces the floor, and a file
        that is not a PNG is refused with the server's reason on the page.
-eight: eight robots on a walled floor (eight bricks), each turning round a braked wheel (circle.nqc): the page draws all eight,
-       moving, at the browser's frame rate; prints the frames a second and the drawing time a frame measured over
+eight: eight robots on a walled floor (eight bricks), each turning round a braked wheel (circle.nqc): the page
+       draws all eight, moving, at the browser's frame rate; prints the frames a second and the drawing time a frame measured over
        EIGHT_SECONDS, and fails when drawing a frame takes more than MAX_DRAW_MS or the frames drop below MIN_FPS
        (headless Chromium draws 60 a second when it keeps up).
 
