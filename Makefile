@@ -18,7 +18,7 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host asan firmware test fuzz bench run size deb install deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test fuzz bench run world size deb install deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -72,6 +72,15 @@ bench: host firmware deps-bench
 # brick live in the browser (the URL is printed; PANEL_PORT=N for another port than 8330) until Ctrl-C.
 run: host
 	sh host_sim/demo.sh $(HOST_DIR)
+
+# A robot in a world (issue 22): the scene SCENE (default the test pad), its brick's tower at build/rcx for nqc, the
+# world and the brick in the browser at http://127.0.0.1:$(PANEL_PORT)/, in real time until Ctrl-C. Then, in another
+# terminal: nqc -Sbuild/rcx -TRCX2 -d tests/world/linefollow.nqc -run
+SCENE ?= testpad
+PANEL_PORT ?= 8330
+world: host
+	@echo "rcxsim --world $(SCENE): the tower is $(BUILD)/rcx; the panel: http://127.0.0.1:$(PANEL_PORT)/"
+	$(HOST_DIR)/rcxsim --world $(SCENE) --tty $(BUILD)/rcx --panel $(PANEL_PORT)
 
 # Image size, free program memory and ROM checksum of the firmware.
 size: firmware

@@ -3,10 +3,11 @@
  * Where the shipped scenes live: ../share/openrcx/scenes next to the executable (installed, or a package unpacked
  * anywhere), else the source tree rcxsim was built from - the same search as the panel's page (panel_files.c).
  */
-#define _POSIX_C_SOURCE 200809L
+#define _XOPEN_SOURCE 700 /* realpath */
 #include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 #include "world.h"
@@ -29,7 +30,9 @@ static void find(void)
         *slash = 0;
         snprintf(probe, sizeof probe, "%s%s/testpad.json", exe, rel);
         if (access(probe, R_OK) == 0 && strlen(exe) + sizeof rel <= sizeof dir) {
-            snprintf(dir, sizeof dir, "%s%s", exe, rel);
+            snprintf(probe, sizeof probe, "%s%s", exe, rel);
+            if (!realpath(probe, dir)) /* .../share/openrcx/scenes, not .../bin/../share: messages name it */
+                snprintf(dir, sizeof dir, "%s%s", exe, rel);
             return;
         }
     }

@@ -30,11 +30,11 @@ struct world_floor {
 
 struct world_sensor {
     enum world_sensor_kind kind;
-    double x, y, r;                /* robot frame, mm; r: touch reach / light spot radius */
+    double x, y, r;                /* robot frame, mm; r: light spot radius, or touch reach (half the bar's depth) */
+    double w;                      /* touch: the bumper bar's width across the robot (0: a disc of radius r) */
     int wheel;                     /* rotation: 0 left, 1 right axle */
     double gear;                   /* rotation: sensor turns per wheel turn */
-    cpShape *shape;                /* touch: the bumper's sensing disc */
-    int contacts;                  /* touch: how many shapes it overlaps (Chipmunk's begin/separate callbacks) */
+    int pressed;                   /* touch: something touches its area (this ms) */
 };
 
 struct world_wheel {
@@ -42,6 +42,7 @@ struct world_wheel {
     double gear;                   /* motor turns per wheel turn */
     int invert;                    /* 1: the motor's "fwd" drives this wheel backwards */
     double angle;                  /* radians turned, forwards positive */
+    double v0, f_stall;            /* from the motor and gearing (world_build): tyre speed at no load, push at stall */
 };
 
 struct world_robot {
@@ -53,6 +54,7 @@ struct world_robot {
     struct world_wheel wheel[2];   /* left, right */
     struct world_sensor sensor[WORLD_MAX_SENSORS]; /* by input 1-3 */
     double x0, y0, h0;             /* the scene's start pose */
+    double grip, roll;             /* per wheel, from mass and friction (world_build): most push; rolling resistance */
     cpBody *body;
     cpShape *chassis;
     unsigned short raw[3];

@@ -170,9 +170,10 @@ static void roverbot(struct world_robot *r)
     r->rolling = 0.03;
     r->wheel[0] = (struct world_wheel){ .output = 0, .gear = 3 };
     r->wheel[1] = (struct world_wheel){ .output = 2, .gear = 3 };
-    r->sensor[0] = (struct world_sensor){ .kind = SENSOR_TOUCH, .x = 84, .y = 35, .r = 10 };
+    /* Two bumper bars, each across half the front and 14 mm ahead of it, pressing the touch sensors on 1 and 3. */
+    r->sensor[0] = (struct world_sensor){ .kind = SENSOR_TOUCH, .x = 84, .y = 30, .r = 10, .w = 60 };
     r->sensor[1] = (struct world_sensor){ .kind = SENSOR_LIGHT, .x = 60, .y = 0, .r = 6 };
-    r->sensor[2] = (struct world_sensor){ .kind = SENSOR_TOUCH, .x = 84, .y = -35, .r = 10 };
+    r->sensor[2] = (struct world_sensor){ .kind = SENSOR_TOUCH, .x = 84, .y = -30, .r = 10, .w = 60 };
 }
 
 static const char *const outputs[] = { "A", "B", "C", NULL };
@@ -190,7 +191,7 @@ static int wheel(struct ctx *c, const cJSON *obj, const char *where, struct worl
 
 static int sensors(struct ctx *c, const cJSON *list, const char *where, struct world_robot *r)
 {
-    static const char *const keys[] = { "input", "kind", "x", "y", "r", "axle", "gear", NULL };
+    static const char *const keys[] = { "input", "kind", "x", "y", "r", "w", "axle", "gear", NULL };
     const cJSON *s;
     char at[96];
     int i = 0;
@@ -206,6 +207,7 @@ static int sensors(struct ctx *c, const cJSON *list, const char *where, struct w
         if (known_keys(c, s, at, keys) || number(c, s, "input", at, 1, 3, 1, &input) ||
             pick(c, s, "kind", at, kinds, &kind) || number(c, s, "x", at, -500, 500, 0, &v.x) ||
             number(c, s, "y", at, -500, 500, 0, &v.y) || number(c, s, "r", at, 0.5, 100, 0, &v.r) ||
+            number(c, s, "w", at, 0, 1000, 0, &v.w) ||
             pick(c, s, "axle", at, sides, &v.wheel) || number(c, s, "gear", at, 0.01, 100, 0, &v.gear))
             return -1;
         if (kind < 0)

@@ -34,27 +34,11 @@ void robot_set_pose(struct world *w, struct world_robot *r, double x, double y, 
     cpSpaceReindexShapesForBody(w->space, r->body);
 }
 
-/* A touch sensor's disc is a Chipmunk sensor shape: it collides with nothing, but the step reports when it starts and
- * stops overlapping a wall, an obstacle or another robot (another robot's sensing disc does not count). */
-#define TOUCH_COLLISION 1
-
-static cpBool touch_begin(cpArbiter *arb, cpSpace *space, cpDataPointer data)
+/* Where a touch sensor feels, in the robot's frame: its bumper bar (w across, 2 r deep) or its disc's square. */
+static cpBB touch_area(const struct world_sensor *s)
 {
-    CP_ARBITER_GET_SHAPES(arb, mine, other);
-    (void)space;
-    (void)data;
-    if (!cpShapeGetSensor(other))
-        ++*(int *)cpShapeGetUserData(mine);
-    return cpTrue;
-}
-
-static void touch_separate(cpArbiter *arb, cpSpace *space, cpDataPointer data)
-{
-    CP_ARBITER_GET_SHAPES(arb, mine, other);
-    (void)space;
-    (void)data;
-    if (!cpShapeGetSensor(other))
-        --*(int *)cpShapeGetUserData(mine);
+    double half = s->w > 0 ? s->w / 2 : s->r;
+    return cpBBNew(s->x - s->r, s->y - half, s->x + s->r, s->y + half);
 }
 
 static void add_robot(struct world *w, int i)
@@ -63,20 +47,24 @@ static void add_robot(struct world *w, int i)
     cpShapeFilter own = cpShapeFilterNew((cpGroup)(i + 1), CP_ALL_CATEGORIES, CP_ALL_CATEGORIES);
     int k;
 
+    /* One shape: the chassis and its bumpers, which are solid - a bumper presses its switch by touching something. A
+     * touch sensor is pressed while a contact point of the shape lies in its area (touch_area). */
+    cpBB hull = cpBBNew(-r->l / 2, -r->w / 2, r->l / 2, r->w / 2);
+
+    for (k = 0; k < 2; k++) {
+        r->wheel[k].v0 = r->rpm * 2 * M_PI / 60 / r->wheel[k].gear * r->wheel_d / 2;  /* mm/s */
+        r->wheel[k].f_stall = r->stall_nm * NM * r->wheel[k].gear / (r->wheel_d / 2); /* kg mm/s^2 */
+    }
+    r->grip = r->mu * r->mass * WORLD_G * r->drive_share / 2;
+    r->roll = r->rolling * r->mass * WORLD_G / 2;
+
+    for (k = 0; k < WORLD_MAX_SENSORS; k++)
+        if (r->sensor[k].kind == SENSOR_TOUCH)
+            hull = cpBBMerge(hull, touch_area(&r->sensor[k]));
     r->body = cpSpaceAddBody(w->space, cpBodyNew(r->mass, cpMomentForBox(r->mass, r->l, r->w)));
-    r->chassis = cpSpaceAddShape(w->space, cpBoxShapeNew(r->body, r->l, r->w, 0));
+    r->chassis = cpSpaceAddShape(w->space, cpBoxShapeNew2(r->body, hull, 0));
     cpShapeSetFriction(r->chassis, 0.5);
     cpShapeSetFilter(r->chassis, own);
-    for (k = 0; k < WORLD_MAX_SENSORS; k++) {
-        struct world_sensor *s = &r->sensor[k];
-        if (s->kind != SENSOR_TOUCH)
-            continue;
-        s->shape = cpSpaceAddShape(w->space, cpCircleShapeNew(r->body, s->r, cpv(s->x, s->y)));
-        cpShapeSetSensor(s->shape, cpTrue);
-        cpShapeSetFilter(s->shape, own);
-        cpShapeSetCollisionType(s->shape, TOUCH_COLLISION);
-        cpShapeSetUserData(s->shape, &s->contacts);
-    }
     robot_set_pose(w, r, r->x0, r->y0, r->h0);
 }
 
@@ -139,11 +127,6 @@ void world_build(struct world *w)
 
     quiet_first_space();
     w->space = cpSpaceNew();
-    {
-        cpCollisionHandler *h = cpSpaceAddWildcardHandler(w->space, TOUCH_COLLISION);
-        h->beginFunc = touch_begin;
-        h->separateFunc = touch_separate;
-    }
     cpSpaceSetIterations(w->space, 10);
     for (i = 0; i < w->nwalls; i++) {
         struct world_wall *l = &w->wall[i];
@@ -189,10 +172,7 @@ static void kick(struct chassis *c, cpVect j, cpVect p)
 static void drive_wheel(struct world *w, struct world_robot *r, struct chassis *c, int side, unsigned char motor)
 {
     struct world_wheel *wh = &r->wheel[side];
-    double radius = r->wheel_d / 2;
-    double v0 = r->rpm * 2 * M_PI / 60 / wh->gear * radius;   /* tyre speed at no load, mm/s */
-    double f_stall = r->stall_nm * NM * wh->gear / radius;     /* push at stall */
-    double grip = r->mu * r->mass * WORLD_G * r->drive_share / 2;
+    double radius = r->wheel_d / 2, v0 = wh->v0, f_stall = wh->f_stall, grip = r->grip;
     cpVect p = point(c, r->axle_x, side ? -r->track / 2 : r->track / 2);
     double v = cpvdot(speed_at(c, p), c->rot), spin = v, f = 0;
     unsigned mode = motor >> 3 & 3u, level = motor & 7u;
@@ -210,7 +190,7 @@ static void drive_wheel(struct world *w, struct world_robot *r, struct chassis *
     }
     /* Rolling resistance, never more than stops the wheel's share of the robot. */
     {
-        double roll = r->rolling * r->mass * WORLD_G / 2 * STEP_S, stop = fabs(v) * r->mass / 2;
+        double roll = r->roll * STEP_S, stop = fabs(v) * r->mass / 2;
         double j = roll < stop ? roll : stop;
         f -= (v > 0 ? j : v < 0 ? -j : 0) / STEP_S;
     }
@@ -249,8 +229,15 @@ static void drive(struct world *w, struct world_robot *r, const struct world_bri
     for (k = 0; k < 2; k++)
         drive_wheel(w, r, &c, k, io ? io->motor[r->wheel[k].output] : 0);
     hold_sideways(r, &c);
-    cpBodySetVelocity(r->body, cpvadd(c.v, c.dv));
-    cpBodySetAngularVelocity(r->body, c.w + c.dw);
+    /* As impulses: a push through the centre and a couple (Debian's Chipmunk checks the whole body on every set
+     * velocity call, which costs more than these three). */
+    {
+        cpVect x = cpv(1, 0);
+        double a = c.dw * c.moment / 2;
+        cpBodyApplyImpulseAtWorldPoint(r->body, cpvmult(c.dv, c.m), c.pos);
+        cpBodyApplyImpulseAtWorldPoint(r->body, cpv(0, a), cpvadd(c.pos, x));
+        cpBodyApplyImpulseAtWorldPoint(r->body, cpv(0, -a), cpvsub(c.pos, x));
+    }
 }
 
 /* xorshift64*: the light sensor's seeded noise, the same every run of the same scene. */
@@ -266,7 +253,7 @@ static unsigned short sensor_raw(struct world *w, struct world_robot *r, const s
 {
     switch (s->kind) {
     case SENSOR_TOUCH:
-        return s->contacts > 0 ? TOUCH_PRESSED_RAW : OPEN_RAW;
+        return s->pressed ? TOUCH_PRESSED_RAW : OPEN_RAW;
     case SENSOR_LIGHT: {
         cpVect p = cpBodyLocalToWorld(r->body, cpv(s->x, s->y));
         double b = floor_brightness(&w->floor, p.x, p.y, s->r);
@@ -286,6 +273,26 @@ static unsigned short sensor_raw(struct world *w, struct world_robot *r, const s
     }
 }
 
+/* Each contact of the robot's shape (the body's shape comes first) presses the touch sensors whose area it is in,
+ * give or take Chipmunk's contact slop. */
+static void press(cpBody *body, cpArbiter *arb, void *data)
+{
+    struct world_robot *r = data;
+    cpContactPointSet set = cpArbiterGetContactPointSet(arb);
+    int i, k;
+
+    for (i = 0; i < set.count; i++) {
+        cpVect p = cpBodyWorldToLocal(body, set.points[i].pointA);
+        for (k = 0; k < WORLD_MAX_SENSORS; k++) {
+            struct world_sensor *s = &r->sensor[k];
+            cpBB area = touch_area(s);
+            if (s->kind == SENSOR_TOUCH && p.x >= area.l - 1 && p.x <= area.r + 1 && p.y >= area.b - 1 &&
+                p.y <= area.t + 1)
+                s->pressed = 1;
+        }
+    }
+}
+
 void world_step(struct world *w, struct world_brick_io *io, int nbricks)
 {
     int i, k;
@@ -298,6 +305,9 @@ void world_step(struct world *w, struct world_brick_io *io, int nbricks)
     w->ms++;
     for (i = 0; i < w->nrobots; i++) {
         struct world_robot *r = &w->robot[i];
+        for (k = 0; k < WORLD_MAX_SENSORS; k++)
+            r->sensor[k].pressed = 0;
+        cpBodyEachArbiter(r->body, press, r);
         for (k = 0; k < WORLD_MAX_SENSORS; k++) {
             int powered = r->brick < nbricks && io[r->brick].sensor_power[k];
             r->raw[k] = sensor_raw(w, r, &r->sensor[k], powered);

@@ -13,12 +13,18 @@ field() { "$DPKG_DEB" -f "$DEB" "$1"; }
 # shlibdeps: the C library and libmicrohttpd, with versions, from the binary
 field Depends | grep -q 'libc6 (>= ' || fail "Depends lacks libc6: $(field Depends)"
 field Depends | grep -q 'libmicrohttpd[0-9]* (>= ' || fail "Depends lacks libmicrohttpd: $(field Depends)"
+for lib in libchipmunk libcjson libpng; do # the world (--world)
+    field Depends | grep -q "$lib[0-9.-]* (>= " || fail "Depends lacks $lib: $(field Depends)"
+done
 "$DPKG_DEB" -c "$DEB" | awk '{ print $1, $6 }' >"$WORK/list"
 for f in ./usr/bin/rcxsim ./usr/share/openrcx/openrcx.srec ./usr/share/openrcx/openrcx.lgo \
     ./usr/share/openrcx/panel/index.html ./usr/share/openrcx/panel/panel.js ./usr/share/openrcx/panel/panel.css \
     ./usr/share/openrcx/panel/brick.svg ./usr/share/openrcx/panel/world.js \
     ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
-    ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/copyright ./usr/share/doc/openrcx/changelog.gz; do
+    ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/copyright ./usr/share/doc/openrcx/changelog.gz \
+    ./usr/share/openrcx/scenes/testpad.json ./usr/share/openrcx/scenes/testpad.png \
+    ./usr/share/openrcx/scenes/arena.json ./usr/share/openrcx/scenes/maze.json \
+    ./usr/share/openrcx/scenes/two_robots.json ./usr/share/openrcx/scenes/paper.png; do
     grep -q " $f\$" "$WORK/list" || fail "$f missing from the package"
 done
 grep -q '^-rwxr-xr-x ./usr/bin/rcxsim$' "$WORK/list" || fail "rcxsim is not 0755"

@@ -7,6 +7,11 @@ root="$WORK/root"
 "$DPKG_DEB" -x "$DEB" "$root"
 sim="$root/usr/bin/rcxsim"
 [ "$("$sim" --version)" = "rcxsim (OpenRCX) $VERSION" ] || fail "--version: $("$sim" --version)"
+# The shipped scenes are found in the unpacked tree: one runs, and a copy broken there is the one refused.
+"$sim" --world testpad --fast --duration 100 || fail "--world testpad from the package failed"
+echo '{}' >"$root/usr/share/openrcx/scenes/maze.json"
+"$sim" --world maze --fast --duration 100 2>"$WORK/maze.err" && fail "the unpacked maze.json was not the one read"
+grep -qF "$root/usr/share/openrcx/scenes/maze.json" "$WORK/maze.err" || fail "--world maze: $(cat "$WORK/maze.err")"
 mark="<!-- unpacked copy $$ -->"
 echo "$mark" >>"$root/usr/share/openrcx/panel/index.html"
 
