@@ -3,7 +3,7 @@
 
 drive: rcxsim --world testpad with a tower; the real nqc downloads drive.nqc (A and C forward for 3 s, then off) and
        runs it; the page, read while it draws, shows the robot moving on the floor: the pose it drew changes many
-       times, by more than 250 mm, and ends where rcxsim says the robot is; the canvas's pixels show the robot's body
+       times (interpolated between the poses rcxsim sends), by more than 250 mm, and ends where rcxsim says the robot is; the canvas's pixels show the robot's body
        where the page says the robot is, no longer where it started, and its trail between. A screenshot,
        world-panel.png, goes to the folder given.
 drag:  rcxsim --world arena; the robot and a movable obstacle dragged with the pointer land where they were dropped
@@ -96,6 +96,9 @@ def drive(shots):
             moved = math.dist(p0, (last["x"], last["y"]))
             check(moved > 250, "the robot drove more than 250 mm on the page: %.0f mm" % moved)
             check(len(moving) >= 15, "the page drew the robot at %d places on the way, not jumps" % len(moving))
+            between = [p["t"] for p in seen if p["t"] != int(p["t"])]  # poses come at whole milliseconds
+            check(len(between) >= 10, "the page drew poses between those rcxsim sent: %d of %d" % (len(between),
+                                                                                                   len(seen)))
             # Stopped: the page ends where rcxsim says the robot is.
             sim_pose = get_json(sim, "/world/pose")["robots"][0]
             page = wait_for("the page to agree with rcxsim", lambda: (lambda p: p if near(
