@@ -45,7 +45,6 @@ struct panel_world {
     struct world_request *queue, **tail;
     /* simulation thread only */
     struct timespec pose_at;      /* when the poses were last copied */
-    int scene_stale;              /* the scene may have changed: copy it again */
 };
 
 struct panel {

@@ -199,39 +199,40 @@ void panel_world_start(struct panel *p, struct sim *s)
 void panel_world_sync(struct panel *p, struct sim *s)
 {
     struct panel_world *pw = &p->world;
-    struct world_request *r, *next;
+    struct world_request *head, *r, *next;
     struct timespec now;
-    int applied = 0;
+    int scene = 0;
 
     pthread_mutex_lock(&p->lock);
-    r = pw->queue;
+    head = pw->queue;
     pw->queue = NULL;
     pw->tail = &pw->queue;
     pthread_mutex_unlock(&p->lock);
-    for (; r; r = next) {
-        next = r->next;
+    for (r = head; r; r = r->next) {
         apply(p, s, r);
-        applied = 1;
-        if (r->kind != WORLD_PLACE)
-            pw->scene_stale = 1;
-        pthread_mutex_lock(&p->lock);
+        scene |= r->kind != WORLD_PLACE;
+    }
+    if (scene)
+        copy_scene(p, s->world);
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    if (head || ms_since(&pw->pose_at, &now) >= POSE_GAP_MS) {
+        copy_poses(p, s->world);
+        pw->pose_at = now;
+    }
+    if (!head)
+        return;
+    /* Answered only now: a page that reads the world after its answer sees what it asked for. */
+    pthread_mutex_lock(&p->lock);
+    for (r = head; r; r = next) {
+        next = r->next;
         r->done = 1;
         if (r->abandoned) {
             free(r->png);
             free(r);
         }
-        pthread_cond_broadcast(&p->changed);
-        pthread_mutex_unlock(&p->lock);
     }
-    if (pw->scene_stale) {
-        copy_scene(p, s->world);
-        pw->scene_stale = 0;
-    }
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    if (applied || ms_since(&pw->pose_at, &now) >= POSE_GAP_MS) {
-        copy_poses(p, s->world);
-        pw->pose_at = now;
-    }
+    pthread_cond_broadcast(&p->changed);
+    pthread_mutex_unlock(&p->lock);
 }
 
 size_t panel_world_event(struct panel *p, unsigned long *version, unsigned long *scene_version, char *buf,
