@@ -224,6 +224,12 @@ function sensorFill(sensor, raw) {
     return "#74c0fc"; // rotation: on the axle
 }
 
+// Whether the brick powers an input (a light sensor's LED is lit only then), from its card's last snapshot.
+function powered(brick, input) {
+    const card = typeof cards !== "undefined" ? cards[brick] : null;
+    return !!(card && card.last && card.last.sensors[input - 1].power);
+}
+
 function drawRobot(g, spec, pose) {
     g.save();
     g.translate(pose.x, pose.y);
@@ -249,7 +255,7 @@ function drawRobot(g, spec, pose) {
         g.fillStyle = sensorFill(s, pose.inputs ? pose.inputs[s.input - 1] : 1023);
         g.fill();
         g.lineWidth = 2.5;
-        g.strokeStyle = s.kind === "light" ? "#c92a2a" : "#212529"; // the light sensor's red LED ring
+        g.strokeStyle = s.kind === "light" && powered(spec.brick, s.input) ? "#f03e3e" : "#212529"; // its red LED
         g.stroke();
     }
     g.restore();
