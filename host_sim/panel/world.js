@@ -145,6 +145,10 @@ function addTrailPoints(robots, dt) {
     const g = layer.getContext("2d"), k = world.scale * (window.devicePixelRatio || 1), H = world.scene.floor.h;
     g.setTransform(1, 0, 0, 1, 0, 0);
     for (const r of robots) {
+        if (world.held[`robot ${r.i}`]) { // carried by the pointer: no trail, it starts again where it is put down
+            world.trails[r.i] = null;
+            continue;
+        }
         const last = world.trails[r.i];
         const d = last ? Math.hypot(r.x - last.x, r.y - last.y) : Infinity;
         if (d < TRAIL_STEP_MM) continue;

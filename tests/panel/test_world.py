@@ -7,8 +7,8 @@ drive: rcxsim --world testpad with a tower; the real nqc downloads drive.nqc (A 
        where the page says the robot is, no longer where it started, and its trail between. A screenshot,
        world-panel.png, goes to the folder given.
 drag:  rcxsim --world arena; the robot and a movable obstacle dragged with the pointer land where they were dropped
-       (the robot's pose in rcxsim's trace, the obstacle's in GET /world/pose); a fixed obstacle does not move; the
-       scene picker switches to the test pad; a floor picture chosen in the file input replaces the floor, and a file
+       (the robot's pose in rcxsim's trace, the obstacle's in GET /world/pose); a fixed obstacle does not move; put
+       against a wall, the robot's bumpers are drawn red (pressed); the scene picker switches to the test pad; a floor picture chosen in the file input replaces the floor, and a file
        that is not a PNG is refused with the server's reason on the page.
 eight: eight robots on a walled floor (eight bricks), each turning round a braked wheel (circle.nqc): the page
        draws all eight, moving, at the browser's frame rate; prints the frames a second and the drawing time a frame measured over
@@ -34,6 +34,7 @@ from test_chromium import browser
 from test_world_api import get_json, png, trace_poses
 
 BODY = (0xF5, 0xC5, 0x18)  # the robot's yellow in world.js
+TOUCH_PRESSED = (0xE0, 0x31, 0x31)  # a pressed touch sensor's red in world.js
 EIGHT_SECONDS = 5
 MIN_FPS = 5                # the drawing loop runs; how many frames a second depends on the machine's load (under
                            # ASan, eight bricks in real time and Chromium share two cores with the rest of the suite)
@@ -168,6 +169,18 @@ def drag(shots):
             time.sleep(0.5)
             still = get_json(sim, "/world/pose")["obstacles"][1]
             check(math.dist((fixed["x"], fixed["y"]), (still["x"], still["y"])) < 1, "a fixed box stays: %r" % still)
+            # Against the east wall, the bumpers' touch sensors (inputs 1 and 3) are pressed, and drawn red.
+            sim.post("/world/place?robot=0&x=1395&y=600&h=0")
+            spec = get_json(sim, "/world")["robots"][0]
+            touch = [t for t in spec["sensors"] if t["kind"] == "touch"]
+            page = wait_for("the pressed bumpers on the page", lambda: (lambda p: p if all(
+                p["robots"][0]["inputs"][t["input"] - 1] < 512 for t in touch) else None)(read(driver)))
+            r = page["robots"][0]
+            a = math.radians(r["h"])
+            dots = [(r["x"] + t["x"] * math.cos(a) - t["y"] * math.sin(a), r["y"] + t["x"] * math.sin(a) +
+                     t["y"] * math.cos(a)) for t in touch]
+            for colour in read(driver, dots)["colours"]:
+                check(near(colour, TOUCH_PRESSED, 30), "a pressed touch sensor drawn red: %r" % colour)
             driver.save_screenshot(os.path.join(shots, "world-drag.png"))
 
             # Another scene from the picker.
