@@ -286,14 +286,15 @@ static int robot(struct ctx *c, struct world *w, const cJSON *o, int i, const ch
     if (string(c, o, "file", where, &file))
         return -1;
     if (file) {
-        char path[4096];
-        struct ctx fc = { path, c->err, c->errlen };
+        char path[4096], label[4096 + 128];
+        struct ctx fc = { label, c->err, c->errlen };
         cJSON *root;
         int status;
         snprintf(path, sizeof path, "%s%s", file[0] == '/' ? "" : dir, file);
+        snprintf(label, sizeof label, "%s: %s: robot file %s", c->path, where, path); /* both files named */
         if (!(root = parse_file(&fc, path)))
             return -1;
-        status = robot_keys(&fc, root, "robot", r, 0);
+        status = robot_keys(&fc, root, "its keys", r, 0);
         cJSON_Delete(root);
         if (status)
             return -1;

@@ -86,12 +86,12 @@ static void rotation_counts_sixteen_a_turn_forwards(void **state)
     w = world_load(path, err, sizeof err);
     assert_non_null(w);
     steps(w, &io, 1, 1);
-    last = phase(io.raw[1]);
+    last = phase(io.raw[0]);
     assert_int_equal(last, 0);
     for (ms = 0; ms < 5000; ms++) { /* 5 s at 271 mm/s: 10 turns */
         int p;
         world_step(w, &io, 1);
-        p = phase(io.raw[1]);
+        p = phase(io.raw[0]);
         assert_true(p >= 0);
         assert_true(((p - last) & 3) <= 1); /* never backwards, never a jump of two */
         count += (p - last) & 3;
@@ -103,6 +103,71 @@ static void rotation_counts_sixteen_a_turn_forwards(void **state)
     assert_true(abs(count - (int)((y - 300) / (3.14159265 * 43.2) * 16)) <= 1);
     assert_true(count > 150);
     world_free(w);
+}
+
+/* The odometry scene's light sensor (input 2) on white paper with noise 4, seed 7: within 4 of 711, not always the
+ * same, and the same sequence in two worlds. */
+static void light_noise_is_seeded(void **state)
+{
+    char path[4096], err[512];
+    struct world *a, *b;
+    struct world_brick_io ia = { .sensor_power = { 0, 1, 0 } }, ib = ia;
+    unsigned lo = 1023, hi = 0;
+    int ms;
+    (void)state;
+    snprintf(path, sizeof path, "%s/odometry.json", TESTS_WORLD_DIR);
+    a = world_load(path, err, sizeof err);
+    b = world_load(path, err, sizeof err);
+    assert_non_null(a);
+    assert_non_null(b);
+    for (ms = 0; ms < 200; ms++) {
+        world_step(a, &ia, 1);
+        world_step(b, &ib, 1);
+        assert_int_equal(ia.raw[1], ib.raw[1]);
+        lo = ia.raw[1] < lo ? ia.raw[1] : lo;
+        hi = ia.raw[1] > hi ? ia.raw[1] : hi;
+    }
+    assert_true(lo >= 707 && hi <= 715 && lo < hi);
+    world_free(a);
+    world_free(b);
+}
+
+static double robot_y(const struct world *w)
+{
+    char pose[256];
+    double x, y, h;
+    assert_true(world_robot_pose(w, 0, pose, sizeof pose) > 0);
+    assert_int_equal(sscanf(pose, "\"robot\":0,\"x\":%lf,\"y\":%lf,\"h\":%lf", &x, &y, &h), 3);
+    return y;
+}
+
+/* From full speed northwards (271 mm/s): floating, the robot rolls on against the rolling resistance alone (0.03 g:
+ * v^2 / 2a = 125 mm); braked, the shorted motors stop it within the tyres' grip (0.64 g: 6 mm). */
+static void float_coasts_and_brake_stops(void **state)
+{
+    char path[4096], err[512];
+    struct world *w;
+    struct world_brick_io io = { .motor = { FWD7, 0, FWD7 } };
+    int mode;
+    (void)state;
+    snprintf(path, sizeof path, "%s/odometry.json", TESTS_WORLD_DIR);
+    for (mode = 0; mode <= 3; mode += 3) {
+        double y0, y1;
+        w = world_load(path, err, sizeof err);
+        assert_non_null(w);
+        assert_int_equal(world_place(w, 1, 0, 1000, 20, 90), 0);
+        io.motor[0] = io.motor[2] = FWD7;
+        steps(w, &io, 1, 1000);
+        y0 = robot_y(w);
+        io.motor[0] = io.motor[2] = (unsigned char)(mode << 3 | 7);
+        steps(w, &io, 1, 2000);
+        y1 = robot_y(w);
+        if (mode == 0)
+            assert_true(y1 - y0 > 100 && y1 - y0 < 150);
+        else
+            assert_true(y1 - y0 > 2 && y1 - y0 < 10);
+        world_free(w);
+    }
 }
 
 static void placing_checks_the_floor_and_the_index(void **state)
@@ -187,6 +252,8 @@ int main(void)
         cmocka_unit_test(light_reads_white_paper_and_black_line),
         cmocka_unit_test(bumpers_press_on_a_wall_only),
         cmocka_unit_test(rotation_counts_sixteen_a_turn_forwards),
+        cmocka_unit_test(light_noise_is_seeded),
+        cmocka_unit_test(float_coasts_and_brake_stops),
         cmocka_unit_test(placing_checks_the_floor_and_the_index),
         cmocka_unit_test(scene_json_has_the_panel_shapes),
         cmocka_unit_test(floor_picture_replaced_or_refused),
