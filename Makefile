@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # OpenRCX front door.  `make` builds everything, `make test` runs every test, `make firmware` the brick image,
 # `make bench` prints the benchmarks.  Each target first installs the Debian packages it needs when missing.
 BUILD      ?= build
@@ -18,7 +19,7 @@ HOST_DEPS   := cmake:cmake gcc:gcc clang:clang /usr/include/cmocka.h:libcmocka-d
 TARGET_DEPS := h8300-hms-gcc:gcc-h8300-hms h8300-hms-ld:binutils-h8300-hms
 BENCH_DEPS  := valgrind:valgrind
 
-.PHONY: all host asan firmware test fuzz bench run world size deb install deps-host deps-target deps-bench clean
+.PHONY: all host asan firmware test test-runs fuzz bench run world size deb install deps-host deps-target deps-bench clean
 
 all: host firmware
 
@@ -51,8 +52,17 @@ firmware: deps-target
 
 # The suite runs twice: as built for speed, and under AddressSanitizer + UndefinedBehaviorSanitizer (clang).
 test: host firmware asan
-	cd $(HOST_DIR) && ctest --output-on-failure -j $(JOBS)
-	cd $(ASAN_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory test-runs
+
+# Both runs of the built folders, the second also when the first failed (its sanitizer findings would stay hidden
+# otherwise), each one's result on a line at the end; fails if either failed (issue 23 §6; tests/make).
+test-runs:
+	@failed=0; results=""; \
+	for run in "normal:$(HOST_DIR)" "ASan/UBSan:$(ASAN_DIR)"; do name=$${run%%:*}; dir=$${run#*:}; \
+	  echo "== make test: the $$name run ($$dir)"; \
+	  if (cd "$$dir" && ctest --output-on-failure -j $(JOBS)); then result=passed; else result=FAILED; failed=1; fi; \
+	  results="$$results$$name run ($$dir): $$result;"; done; \
+	echo "== make test:"; echo "$$results" | tr ';' '\n' | sed '/^$$/d; s/^/   /'; [ $$failed = 0 ]
 
 asan: deps-host
 	CC=clang cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Debug -DRCX_SANITIZE=ON >/dev/null

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # Sizes the VM's program-memory arena to the RAM the firmware leaves free.
 #
 # The arena (`u8 arena[RCX_ARENA_SIZE]`, the last member of the `struct rcx` in .bss) is the only thing

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # The limits of the linked image that linker/openrcx.ld cannot check itself: with --relax, ld evaluates the
 # script's ASSERTs on the sizes before relaxation as well, so an image that fits only once relaxed would be
 # refused. The limits are the script's own symbols (_rcx_image_max, _rcx_rom_vars), read back from the image; the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Register-level logic of the drivers, without register access (hw.h; numbers from rcx-hardware.md §3). */
 #include "hal.h"
 #include "arith.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The register-level logic of the brick's drivers, kept apart from the register writes so that the host can test
  * it against rcx-hardware.md: PWM patterns, A/D mapping, battery, tone dividers, baud rate and carrier, debounce,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The LCD controller's two-wire bus, bit-banged (rcx-hardware.md §3.6): data change while SCL is low, MSB first,
  * each byte followed by an acknowledge clock. The pins come from the port's hw_pins.h: single bset/bclr

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # Reading an image's linker symbols with nm, for the scripts that check or size the link (cmake -P).
 #
 # nm_read_symbols(<nm> <image> <who>) loads the symbol table; symbol_value(<name> <out>) then sets <out> to the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make size`: what the firmware image costs. Usage: sh drivers/size.sh <firmware build dir, e.g. build/h8300>
 #   sections     text/data/bss as h8300-hms-size counts them (.onchip shows under data and the unpacker, section
 #                .unpack, under text: neither is part of the image as it runs)

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make run`: the virtual RCX on a pseudo-terminal with its panel in the browser, a sample program downloaded and
 # started by the real nqc, and the trace (JSON lines: motors, sound, LCD, IR bytes) on the terminal. The brick
 # keeps running for the panel until Ctrl-C. The trace goes to a file while nqc talks, and is shown from its start

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * hal.h for the virtual RCX: outputs become trace lines, IR bytes go into the simulated room, and the two power
  * calls switch the brick's mode in the main loop.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * rcxsim --panel: the bricks live in a browser. An embedded HTTP server (libmicrohttpd, in threads of its own)
  * serves the static page in host_sim/panel/, a JSON snapshot of every brick (GET /state), a stream of snapshots

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Where the panel's page lives. The same rcxsim binary runs from the build tree, from an unpacked package and
  * installed: first ../share/openrcx/panel next to the executable (bin/rcxsim -> share/openrcx/panel, as `make

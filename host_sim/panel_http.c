@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The panel's HTTP server (libmicrohttpd, one thread per connection):
  *   GET  /, /panel.css, /panel.js, /brick.svg   the page (host_sim/panel/)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The panel's view of a brick: copied from the simulation (simulation thread only) and written as the JSON of
  * GET /state and of each Server-Sent Event, in the --trace vocabulary (motor directions, "lcd" as 9 hex bytes, "num"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The RCX ROM's download mode, as the host tools see it (rcx-hardware.md §2.1-2.4, §4.3; host-tools.md §2).
  *

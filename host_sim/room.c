@@ -1,8 +1,10 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The simulated IR room.
  *
- * Every transmitter sends its bytes back to back at its line rate (2400 baud 8O1 = 11 bits, or 4800 baud 8N1);
- * a byte reaches its receivers when its last bit has gone out. Who hears whom:
+ * Every transmitter sends its bytes back to back at its line rate (2400 baud 8O1 = 11 bits, or 4800 baud 8N1, or
+ * one a microsecond for a joined hub's bytes, ROOM_AT_ONCE); a byte reaches its receivers when its last bit has
+ * gone out. Who hears whom:
  *   a port facing another (a tower) -> the port it faces and itself (the echo nqc waits for, host-tools.md §1);
  *   any other port (a brick, the script, a network client) -> every port that hears, itself only if it hears its
  *                                      own bytes (a brick does: rcx-hardware.md §3.8).
@@ -16,6 +18,8 @@
 
 static sim_us byte_time(unsigned mode)
 {
+    if (mode & ROOM_AT_ONCE)
+        return 1;
     return mode & HAL_IR_4800 ? 2084 : 4583; /* 10 bits at 4800, 11 bits at 2400 */
 }
 
@@ -53,7 +57,7 @@ void room_send(struct room *r, struct room_port *p, const unsigned char *data, u
     struct room_tx *tx = &p->tx;
     unsigned i;
     for (i = 0; i < len && tx->count < ROOM_TX_QUEUE; i++) {
-        tx->queue[(tx->head + tx->count) % ROOM_TX_QUEUE] = (unsigned short)(data[i] | (mode & 7u) << 8);
+        tx->queue[(tx->head + tx->count) % ROOM_TX_QUEUE] = (unsigned short)(data[i] | (mode & 0xFu) << 8);
         if (tx->count++ == 0) {
             tx->start = r->now;
             tx->end = r->now + byte_time(mode);

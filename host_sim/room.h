@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The simulated IR room: the one place every way into the virtual RCX's infrared plugs in.
  *
@@ -15,11 +16,14 @@
 typedef unsigned long long sim_us; /* simulated time, microseconds */
 
 #define ROOM_TX_QUEUE 4096         /* bytes waiting at one transmitter */
+/* A room_send() mode beside HAL_IR_*: the bytes come from a network that paced them itself, or not at all (a joined
+ * hub), and go on the air as fast as they came, one a microsecond, instead of at the line rate (net.c says why). */
+#define ROOM_AT_ONCE 0x08
 #define ROOM_MAX_PORTS 64
 
 /* A transmitter: bytes leave back to back at the line rate. */
 struct room_tx {
-    unsigned short queue[ROOM_TX_QUEUE]; /* byte | HAL_IR_* mode << 8 */
+    unsigned short queue[ROOM_TX_QUEUE]; /* byte | (HAL_IR_* | ROOM_AT_ONCE) mode << 8 */
     unsigned head, count;
     sim_us start, end;             /* the byte on the air (count > 0) */
     int collided;                  /* another transmitter overlapped it */

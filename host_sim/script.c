@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * --script FILE: timed inputs, one per line ('#' starts a comment):
  *   <ms> [@<brick>] sensor <1-3> raw <0-1023>

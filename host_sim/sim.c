@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * rcxsim, the virtual RCX: options, the bricks' power-on, and the main loop that advances simulated time one
  * millisecond at a time (rt_tick, A/D samples, rt_run with the byte-code budget of that millisecond).
@@ -52,6 +53,7 @@ static void usage(FILE *f)
           "  --panel-bind ADDR  the address the panel listens on (default 127.0.0.1, loopback only)\n"
           "  --tcp [ADDR:]PORT  be the IR hub of NQC 4's -Stcp and brickEmu (default 127.0.0.1:" NET_DEFAULT_PORT
           ", 0: any port)\n"
+          "  --tcp-tower [ADDR:]PORT  an IR tower over TCP facing one brick alone; once per brick (0: any port)\n"
           "  --tcp-join HOST:PORT  the bricks join the IR hub there (brickEmu's ir-server, rcxsim --tcp)\n"
           "  --world SCENE      each brick drives a robot of the scene (a .json file or a shipped scene's name)\n",
           f);
@@ -72,6 +74,7 @@ static const char *value_wanted(const char *option)
         { "--panel", "a port, 0-65535" },
         { "--panel-bind", "an IPv4 or IPv6 address" },
         { "--tcp-join", "HOST:PORT of an IR hub" },
+        { "--tcp-tower", "[ADDR:]PORT for a brick's tower, once per brick (at most 8)" },
         { "--world", "a scene file or the name of a shipped scene" },
     };
     size_t i;
@@ -303,8 +306,8 @@ int main(int argc, char **argv)
     static struct sim sim;
     struct sim *s = &sim;
     const char *ttys[SIM_MAX_BRICKS], *loads[64], *script = NULL, *trace = NULL, *panel_bind = "127.0.0.1";
-    const char *tcp = NULL, *tcp_join = NULL, *world = NULL;
-    int nttys = 0, nloads = 0, rom = 0, i, status = 0;
+    const char *tcp = NULL, *tcp_join = NULL, *tcp_towers[SIM_MAX_BRICKS], *world = NULL;
+    int ntcp_towers = 0, nttys = 0, nloads = 0, rom = 0, i, status = 0;
     long panel_port = -1;
     sim_us duration = 0;
 
@@ -354,6 +357,8 @@ int main(int argc, char **argv)
                 panel_bind = v;
             } else if (strcmp(a, "--tcp-join") == 0) {
                 tcp_join = v;
+            } else if (strcmp(a, "--tcp-tower") == 0 && ntcp_towers < SIM_MAX_BRICKS) {
+                tcp_towers[ntcp_towers++] = v;
             } else if (strcmp(a, "--world") == 0) {
                 world = v;
             } else if (strcmp(a, "--duration") == 0 && atol(v) > 0) {
@@ -370,8 +375,9 @@ int main(int argc, char **argv)
     }
     if (world && sim_world_open(s, world))
         return 2;
-    if (nttys > s->nbricks) {
-        fprintf(stderr, "rcxsim: --tty: %d given, more than the %d brick%s (--bricks N)\n", nttys, s->nbricks,
+    if (nttys > s->nbricks || ntcp_towers > s->nbricks) {
+        fprintf(stderr, "rcxsim: %s: %d given, more than the %d brick%s (--bricks N)\n",
+                nttys > s->nbricks ? "--tty" : "--tcp-tower", nttys > s->nbricks ? nttys : ntcp_towers, s->nbricks,
                 s->nbricks == 1 ? "" : "s");
         return 2;
     }
@@ -406,16 +412,30 @@ int main(int argc, char **argv)
         if (tower_open(&s->room, ttys[i], &s->brick[i]->port)) {
             fprintf(stderr, "rcxsim: --tty %s: %s\n", ttys[i], strerror(errno));
             status = 1;
+        } else {
+            fprintf(stderr, "rcxsim: IR tower of brick %d at %s (tty)\n", i, ttys[i]);
+        }
+    }
+    for (i = 0; i < ntcp_towers && status == 0; i++) {
+        char err[512], what[64];
+        snprintf(what, sizeof what, "IR tower of brick %d", i);
+        if (net_hub_open(&s->room, tcp_towers[i], &s->brick[i]->port, what, err, sizeof err)) {
+            fprintf(stderr, "rcxsim: --tcp-tower %s: %s\n", tcp_towers[i], err);
+            status = 1;
         }
     }
     room_join(&s->room, &s->script);
     if (status == 0 && (tcp || tcp_join)) {
         char err[512];
-        if (tcp ? net_hub_open(&s->room, tcp, err, sizeof err) : net_join(&s->room, tcp_join, err, sizeof err)) {
+        if (tcp ? net_hub_open(&s->room, tcp, NULL, "IR hub", err, sizeof err)
+                : net_join(&s->room, tcp_join, err, sizeof err)) {
             fprintf(stderr, "rcxsim: %s %s: %s\n", tcp ? "--tcp" : "--tcp-join", tcp ? tcp : tcp_join, err);
             status = 1;
         }
     }
+    if (status == 0 && !s->room.links && !s->panel && !script && !duration)
+        fprintf(stderr, "rcxsim: nothing can reach the brick (no --tty, --tcp, --tcp-tower, --tcp-join, --panel or "
+                        "--script): it runs alone until stopped; rcxsim --help lists the ways in\n");
     if (status == 0)
         run(s, duration);
     if (s->panel)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The virtual RCX: whole firmware runtimes (src/ + vm/) on simulated drivers, any number of bricks in one simulated
  * IR room (room.h) with the ways into it: serial IR towers on pseudo-terminals for the real host tools (tower.h),

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * A serial IR tower on a pseudo-terminal (--tty): a port of the room facing one brick, and a link that brings in
  * what the host tool writes. The tower sends at the speed the host set on its side of the line: 4800 baud for

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* A serial IR tower on a pseudo-terminal (--tty), a way into the IR room (tower.c). */
 #ifndef RCX_TOWER_H
 #define RCX_TOWER_H

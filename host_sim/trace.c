@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The trace: one JSON object per line, {"t": simulated ms, "brick": n, ...}, in time order. A sound line is written
  * when the tone ends (its length is known only then): "ms" long, started at "from".

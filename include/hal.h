@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The narrow door to the hardware. Everything behind it is a port: drivers/ on the brick, host_sim/ on the host.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sizes of the RCX 2.0 virtual machine (spec "Virtual machine characteristics", p. 5, and
  * reference-firmware.md "limits"). A port may override RCX_ARENA_SIZE before including this header.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Accessors over the one instruction table in rcx_opcodes.def.
  *

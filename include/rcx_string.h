@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The four memory functions the portable code uses. A hosted compiler has them in <string.h>; the firmware is
  * built freestanding (no C library at all), so it declares them here and drivers/ supplies them. gcc may emit

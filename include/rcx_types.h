@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Fixed-width integer types for every layer of OpenRCX.
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # CMake toolchain for the OpenRCX firmware: Debian's gcc-h8300-hms (gcc 3.4.6, COFF) for the RCX's plain
 # H8/300. Used by `make firmware`:  cmake -S . -B build/h8300 -DCMAKE_TOOLCHAIN_FILE=linker/h8300-hms.cmake
 # See /work/shared/reference/toolchain.md for the compiler's quirks.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The IR packet layer: 55 FF 00, byte/complement pairs, checksum/complement (host-tools.md §1).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The IR packet layer (host-tools.md §1, rcx-hardware.md §4, reference-firmware.md "IR command handling"):
  * framing, the repeat rule of the toggle bit, replies, and what the machine asks to transmit.

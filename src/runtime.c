@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The runtime's main-loop entry points: the one place where machine, IR link and user interface meet. On the brick
  * they run from .high (linker/openrcx.ld), as IR and user interface do. */
 #include "rcx_string.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The runtime around the byte-code machine: a whole brick as the firmware (or one virtual RCX) runs it.
  *

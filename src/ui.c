@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The user interface of the brick (ui.h). Buttons act on their press, never on their release. Every press and
  * every command received (the IR layer sets vm.idle_reset, spec p. 35; so do PBAliveOrNot and PBPowerDownTime)

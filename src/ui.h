@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The brick's own user interface: the On-Off, Run, View and Prgm buttons (spec p. 98 for the motors), the
  * power-down timer (spec p. 35), PBTurnOff, and the low-battery mark.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Access control & event monitoring (spec pp. 69, 85, 96, 106-107): the state machine of p. 107, one per task.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The access-control & event-monitoring state machine of spec p. 107, one per task (struct rcx_task_events).
  * Its states and inputs in the spec table's order; vm/access.c quotes the table and runs it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The datalog (spec pp. 54-55, 84): entries of 3 bytes at the end of program memory. Entry 0 is the log's own
  * header, type 0xFF, value = entries used including itself; data points follow from entry 1.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Direct commands: one command in, its reply out (spec pp. 12-97, reply lengths as nqc expects them,
  * host-tools.md §1). Framing, echo and the toggle bit belong to the IR layer; this is only the machine's answer.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Disassembler for host tools and tests. Reads only the operand layouts of rcx_opcodes.def. */
 #include <string.h>
 #include "rcx_opcodes.h"

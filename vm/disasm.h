@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Host disassembler in the style of `nqc -L`, driven by the layout column of rcx_opcodes.def. */
 #ifndef RCX_DISASM_H
 #define RCX_DISASM_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The LCD image: program number, running figure, input and output indicators, the number of the selected view and
  * the runtime's marks, recomposed every DISPLAY_REFRESH_MS and sent only when it changed.

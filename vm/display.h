@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The LCD (spec pp. 51, 66, 97; source 14; rcx-hardware.md §3.6): views, indicators and marks composed into the
  * 9-byte segment image and handed to hal_lcd() when it changes.

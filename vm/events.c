@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The event engine (spec pp. 63, 70-71, 74, 100-105; sources 25, 27-31): 16 events, each one sensor and one
  * event type, evaluated whenever its sensor may have changed. Monitoring tasks are told through the state

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Events, event monitoring and access control (spec pp. 63, 69-71, 74, 85, 96, 100-107; sources 23, 25, 27-31).
  * The event engine is vm/events.c; the monitoring/access-control state machine of p. 107 is vm/access.c

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The interpreter: byte codes of the running tasks in round-robin order, one per task and pass of the scheduler.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Decoder tables generated from include/rcx_opcodes.def: the only place byte-code properties are stated. */
 #include "rcx_opcodes.h"
 

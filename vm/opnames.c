@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Names and operand layouts of the byte codes, for the host disassembler and tests; not part of the firmware. */
 #include "rcx_opcodes.h"
 

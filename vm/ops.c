@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Byte codes that programs and direct commands share (availability "Direct/Program" in the spec), plus the
  * program-only ones that do not jump (vm/interp.c runs those). Operands were length-checked by the caller; every

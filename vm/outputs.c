@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Motor registers, the effective output of each motor, and the reversing pause.
  *

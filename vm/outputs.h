@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Outputs (spec pp. 6, 8, 27, 38, 42-43, 64, 72, 98-99; sources 3 and 17): the motor registers the byte codes set,
  * and the effective output handed to hal_motor().

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Program memory: one arena holding the code of every task and subroutine of all five slots, then the datalog.
  * Objects are packed in a fixed order (slot 0 subs 0-7, tasks 0-9, slot 1 ...), so an absent object has size 0

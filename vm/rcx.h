@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The state of one RCX brick and the byte-code machine's public interface.
  *

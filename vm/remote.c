@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * RemoteCommand (spec p. 61) and the transmit requests of SendPBMessage (p. 59) and SendUARTData (p. 60).
  *

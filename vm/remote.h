@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The machine's side of the IR link: RemoteCommand (spec p. 61), and what programs ask to transmit
  * (SendPBMessage p. 59, SendUARTData p. 60). The runtime's IR layer picks up the request and sends it when the link

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Tasks and program slots: start, stop, select (spec pp. 31-33, 16).
  * Priorities do not enter here: firm0328 gives every running task one byte code per pass whatever its priority,

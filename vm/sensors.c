@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sensor processing: every millisecond each input's raw sample becomes its boolean (source 13) and, by mode, its
  * value (source 9). Conversions and thresholds are rcx-hardware.md §3.3 and reference-firmware.md "Sensors".

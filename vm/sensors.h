@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sensor processing (spec pp. 7, 30, 52-53, 102; sources 9-13; rcx-hardware.md §3.3): types, modes, slopes and the
  * conversions from raw samples. Raw samples arrive once per millisecond per input through sensor_sample().

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The sound queue. A system sound takes one queue entry, however many notes it has: the sweeps have ten, and
  * queued note by note they would not fit the eight entries, let alone leave room for a program's own tones.

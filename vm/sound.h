@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sound (spec pp. 19, 23-24, 29, 49, 65, 106; rcx-hardware.md §3.7): a queue of tones and system sounds played
  * through hal_sound().

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Reading and writing parameter sources (spec pp. 6-10). Out-of-range indices and unknown sources read as 0 and
  * are never written: a byte code can reach no memory outside the machine through a source.

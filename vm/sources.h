@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Source numbers and their table (sources.def). */
 #ifndef RCX_SOURCES_H
 #define RCX_SOURCES_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Swan's program opcodes (rcx_opcodes.def, swan-target.md 2), with OpenRCX's rules where Swan is silent (4). One
  * decoder for the arithmetic: every form (global op= k8 / word / source, source op= source) becomes a destination (a

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The decoder's table of Swan's opcodes, generated from include/rcx_opcodes.def (its RCX_SWAN_OP rows). A file of its
  * own: a build without Swan's programs leaves it out whole. */
 #include "rcx_opcodes.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Power-on state and the passage of time. */
 #include "rcx_string.h"
 #include "rcx.h"

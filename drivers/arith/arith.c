@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Integer helpers (see arith.h for names and semantics).
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Integer helpers for the operations the H8/300 has no instruction for.
  *

@@ -1,3 +1,4 @@
+; SPDX-License-Identifier: MPL-2.0
 ; The 16-bit helpers gcc calls on the brick (arith.h): ___mulhi3, ___udivhi3, ___umodhi3, ___divhi3 and
 ; ___modhi3, with rcx_udiv32_16 as the core of the divisions. Written in assembler because the
 ; H8/300 does them in a few instructions that C cannot express (the carry through a register pair,

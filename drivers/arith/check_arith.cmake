@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # Refuses a helper library in which a helper calls one of gcc's helpers (__mulhi3 ... __umodsi3, the mem*
 # functions): compiled from C, a helper that does so would call itself or another one endlessly.
 # Usage: cmake -DOBJDUMP=<objdump> -DLIB=<librcxhelpers.a> -DSTAMP=<file to touch on success> -P check_arith.cmake

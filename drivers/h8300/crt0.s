@@ -1,3 +1,4 @@
+; SPDX-License-Identifier: MPL-2.0
 ; OpenRCX start-up code. The linker script puts section .start first, so _start is the byte at 0x8000
 ; that the ROM calls (with jsr) once a download has been unlocked.
 ;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* What the brick's driver files share (drivers/h8300/). */
 #ifndef RCX_DRIVERS_H
 #define RCX_DRIVERS_H

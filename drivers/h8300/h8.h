@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * H8/3292 on-chip registers and RCX addresses used by the drivers (rcx-hardware.md 1.4, 1.6, 3).
  * 16-bit registers go through a temporary latch: access them as words only.

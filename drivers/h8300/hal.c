@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * hal.h on the brick: motors, sensor power, speaker, LCD, standby and the hand-back to the ROM
  * (rcx-hardware.md 2.4, 3.1-3.7, 3.11, 3.12). No ROM routine is called; the only jump into the ROM is its reset.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* LCD bus pins on the brick: P6.5 = SCL, P6.6 = SDA (P6DR = FFBB), one atomic instruction each. */
 #ifndef RCX_HW_PINS_H
 #define RCX_HW_PINS_H

@@ -1,3 +1,4 @@
+; SPDX-License-Identifier: MPL-2.0
 ; Interrupt entry points, and the code that runs around SLEEP in standby.
 ;
 ; The ROM's vector for each interrupt pushes r6, calls the address stored in the RAM vector table

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * OpenRCX on the brick: start-up, the main loop, and the interrupt that keeps time (rcx-hardware.md 3.2-3.5,
  * 3.9). The interrupt only drives the motor latch, reads the A/D (switching each active sensor's power off around

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 ; The brick's loop over the running tasks (vm_run(), vm/interp.c): one byte code per running task in turn, or a lone
 ; task's many in a row. It runs the byte codes that are most of a busy program itself: SJump, and SetVar/SumVar/
 ; SubVar with a constant or a global variable as the source; any other, and an irregular case of these (a truncated

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Where runfast.S finds what it reads and writes: offsets in struct rcx and struct rcx_task, and the byte codes it
  * runs. Plain numbers, as the assembler reads this file too; vm/interp.c checks each against the C declarations when

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The IR link (rcx-hardware.md 3.8): the SCI at 2400 Bd 8O1 (or 4800) with the carrier from TMR1, both interrupt
  * driven. Received bytes, with an error mark, go into a ring the main loop drains into rt_ir_byte; the brick hears

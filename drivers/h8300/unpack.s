@@ -1,3 +1,4 @@
+; SPDX-License-Identifier: MPL-2.0
 ; The unpacker of the firmware download (format: drivers/pack/pack.h; the packer and its reference unpacker:
 ; drivers/pack/pack.c). It is no part of the running image: drivers/pack/rcxpack.c downloads it right after the
 ; knock string, at _rcx_head_end, where crt0.s's `bra` from the entry lands, and the packed rest of the image right

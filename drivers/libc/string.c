@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * memcpy, memmove, memset and memcmp for the freestanding firmware: the portable code calls them and gcc emits
  * calls to memcpy/memset for struct copies. Byte loops: small, and the brick copies little (downloads, compaction).

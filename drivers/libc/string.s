@@ -1,3 +1,4 @@
+; SPDX-License-Identifier: MPL-2.0
 ; memcpy, memmove, memset and memcmp for the freestanding firmware (rcx_string.h): the portable code calls
 ; them and gcc emits calls to memcpy/memset for struct copies. Byte loops, in assembler because a C loop
 ; needs more registers than gcc's calling convention leaves free and pays for saving them; the brick

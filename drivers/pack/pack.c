@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The packer and the reference unpacker of the image's download (format: pack.h). */
 #include <stdlib.h>
 #include <string.h>

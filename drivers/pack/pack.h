@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The compression of the firmware image's downloaded bytes (host side: the packer, and the reference unpacker that
  * checks it). drivers/h8300/unpack.s unpacks the same stream on the brick; this file and unpack.s define the format.

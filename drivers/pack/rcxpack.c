@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * rcxpack: writes the S-records downloaded to the brick from the linked firmware image, its bytes after the head
  * packed (format: pack.h). A host tool, built and run by drivers/CMakeLists.txt.

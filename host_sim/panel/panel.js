@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MPL-2.0
 // The virtual RCX panel: draws every brick from the snapshots rcxsim streams on /events, and sends the user's
 // inputs back by POST. The LCD is drawn from the 9-byte segment image alone: each element of brick.svg with
 // data-seg="k.n" is lit when bit n of byte k is set.

@@ -519,6 +519,12 @@ void world_free(struct world *w)
     p = calloc(1, sizeof *p);
     if (!p)
         abort();
+    /* A sleeping body's constraints are out of the space's lists until it wakes: wake them all first. */
+    for (i = 0; i < w->nrobots; i++)
+        cpBodyActivate(w->robot[i].body);
+    for (i = 0; i < w->nobstacles; i++)
+        if (cpBodyGetType(w->obstacle[i].body) == CP_BODY_TYPE_DYNAMIC)
+            cpBodyActivate(w->obstacle[i].body);
     cpSpaceEachShape(w->space, each_shape, p);
     cpSpaceEachConstraint(w->space, each_constraint, p);
     cpSpaceEachBody(w->space, each_body, p); /* the dynamic ones, and the static obstacles' */

@@ -127,6 +127,10 @@ void world_build(struct world *w)
 
     quiet_first_space();
     w->space = cpSpaceNew();
+    /* What has been still for half a second (below 1 mm/s) sleeps until something touches or drives it: obstacles
+     * nobody pushes cost no constraint solving. */
+    cpSpaceSetSleepTimeThreshold(w->space, 0.5);
+    cpSpaceSetIdleSpeedThreshold(w->space, 1.0);
     cpSpaceSetIterations(w->space, 10);
     for (i = 0; i < w->nwalls; i++) {
         struct world_wall *l = &w->wall[i];
@@ -218,6 +222,15 @@ static void drive(struct world *w, struct world_robot *r, const struct world_bri
     struct chassis c;
     int k;
 
+    /* A sleeping robot whose motors neither drive nor brake stays where it is; one driven wakes up. */
+    if (cpBodyIsSleeping(r->body)) {
+        int driven = 0;
+        for (k = 0; k < 2 && io; k++)
+            driven |= (io->motor[r->wheel[k].output] >> 3 & 3u) != 0;
+        if (!driven)
+            return;
+        cpBodyActivate(r->body);
+    }
     c.pos = cpBodyGetPosition(r->body);
     c.rot = cpBodyGetRotation(r->body);
     c.v = cpBodyGetVelocity(r->body);

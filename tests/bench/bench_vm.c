@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Host interpreter throughput for the x++ loop of reference-firmware.md ("sumv var,1 ; jmp back": two byte codes
  * per iteration) with 1 and with 10 tasks.

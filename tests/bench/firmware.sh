@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make bench`: byte codes per second of the firmware on the brick, counted in an H8/300 simulator running the
 # image's own code (tests/drivers/h8bench.c; its timing model is in tests/drivers/h8sim.h), function by function and
 # then the whole image in a simulated brick (tests/drivers/h8machine.h). Goal: 30 000 byte codes/s for one task

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make bench`: the virtual RCX in --fast mode - simulated seconds per wall-clock second for ten busy tasks
 # (goal: at least 1 000 x real time on one core), at the brick's own speed and at a flat 100 byte codes per ms.
 set -e

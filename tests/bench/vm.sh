@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make bench`: interpreter throughput, and instructions per byte code under callgrind when valgrind is present.
 set -e
 bin="$1/tests/bench_vm"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Cross-check of the instruction table against the real nqc: every instruction `nqc -L` lists must have the
  * same offset, length and mnemonic in our disassembler, and every jump the same target. Lengths decide where

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * `make bench` (tests/bench/firmware.sh): byte codes per second of the firmware image, counted in the H8/300
  * simulator (h8sim.h gives the timing model) on the `x++` loop nqc makes of `while (true) x++;`

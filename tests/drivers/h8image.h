@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The firmware image in the simulator (h8sim.h): its S-records, and its symbols as `nm` prints them. */
 #ifndef H8IMAGE_H
 #define H8IMAGE_H

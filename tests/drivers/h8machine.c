@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The brick's peripherals around the H8/300 simulator (h8machine.h). Registers: rcx-hardware.md 1.6, 3.3, 3.8, 3.9;
  * buttons and standby: 3.5, 3.11. */
 #include <stdio.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The whole brick around the simulated CPU (h8sim.h): the image's main() runs with the peripherals the firmware
  * uses, so that time, interrupts and sleep are the image's own. Modelled: the FRT compare match A (the tick), the

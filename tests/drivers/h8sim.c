@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* H8/300 instruction-set simulator for host tools (h8sim.h). Encodings and flags: the H8/300 programming manual. */
 #include <stdio.h>
 #include <string.h>

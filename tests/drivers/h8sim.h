@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * A small H8/300 instruction-set simulator for host tools: runs functions of the firmware image as the brick
  * would and counts the states they take. Peripherals are not modelled (their registers read back what was

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The LCD bus pins in the host tests: every change is recorded, and where the brick waits (test_lcdbus.c decodes
  * the waveform). */
 #ifndef RCX_HW_PINS_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The firmware image's own code, run in the H8/300 simulator (h8sim.c) and compared with the same C compiled for
  * the host: the arithmetic helpers gcc calls (drivers/arith) and the drivers' logic (drivers/hw.c). This catches

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The whole firmware image running in the simulated brick (h8machine.h): main loop, interrupts, sleep, the IR link
  * at 2400 Bd. What only the whole can show: direct commands and downloads are answered promptly while tasks spin,

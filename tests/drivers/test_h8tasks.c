@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Several tasks in the firmware image against the host's machine: the same random and hand-written programs
  * (several tasks, subroutines, jumps in and out of the code, operands out of range, byte codes the brick's fast loop

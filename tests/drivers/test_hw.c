@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The drivers' register-level logic (drivers/hw.c) against the numbers of rcx-hardware.md, restated here
  * literally rather than taken from the code under test.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The LCD bus (drivers/lcdbus.c, rcx-hardware.md §3.6) compiled against recording pins, its waveform decoded as
  * the controller would see it: START and STOP conditions, data sampled on the rising clock edge, MSB first, nine

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The image packer and its reference unpacker (drivers/pack/pack.c, format in pack.h): round trips of the real image
  * and of edge cases, streams the unpacker must refuse, and the in-place check on the brick's layout, which must

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Switching off and on, with the whole firmware image in the simulated brick (h8machine.h): the power-down timer
  * and the On-Off button put the brick into software standby, and one press of On-Off wakes it (issue 9, item 3:

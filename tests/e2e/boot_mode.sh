@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # A brick running the firmware is sent back to the ROM by GoIntoBootMode (65 01 03 05 07 0B) at the start of
 # nqc -firmware, takes the new image and starts it: the old programs are gone.
 . "$E2E_DIR/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The other nqc actions over the link: -watch, -sleep, -near/-far, -clear, -raw, and a program larger than the
 # free memory (BeginOfTask status 1, host-tools.md §2 / reference-firmware.md "Downloads").
 . "$E2E_DIR/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # nqc -datalog and -datalog_full read the datalog a program wrote (host-tools.md §2: A4 uploads).
 . "$E2E_DIR/lib.sh"
 T="$WORK/tty"

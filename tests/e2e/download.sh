@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # nqc -d / -run / -pgm with the real nqc over the pseudo-terminal, for the target named in $1 (RCX2 or RCX, nqc's
 # default), then the results read back with poll commands (nqc -raw 12 ...).
 . "$E2E_DIR/lib.sh"

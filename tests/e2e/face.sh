@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # What a user of nqc sees of the brick's face and status (reference-firmware.md, "Observed" and "The brick's face"):
 # outputs braked from the start and after nqc -run, bit 6 clear while an output runs, the status bytes of SetDatalog
 # and DatalogNext, 0x8000 for polls of what does not exist, the watch with its leading zero and blinking point, and

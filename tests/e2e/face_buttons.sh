@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The brick's face through its buttons, scripted (reference-firmware.md, "The brick's face"): View from a program's
 # own display goes to the watch, then inputs and outputs (an output shows 0 when off, power + 1 when running); the
 # figure walks in 260 ms steps; On-Off plays the key click before standby and the double beep on starting and on waking, and the

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # firmdl3 without --slow against the virtual ROM: its fast mode runs a helper on the brick that switches the serial
 # port to 4800 baud, which the virtual RCX cannot do. firmdl3 then fails, and rcxsim says why on its own output and
 # what to use instead; that advice works, with no restart of rcxsim.

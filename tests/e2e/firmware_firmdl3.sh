@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # brickOS's firmdl3 (Debian package brickos) loads the image: 10, 65, then 75 / 45 blocks numbered 1..N (the last
 # is N, not 0) / A5. --slow: its default fast mode first runs a helper program on the brick that reprograms the
 # ROM's serial port, which a simulated ROM cannot execute.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # nqc -firmware of the built image into a brick in the ROM's download mode (host-tools.md §2: 10, 15, 65, 75,
 # 45 blocks of 200 bytes numbered 1.. and 0 last, A5 "LEGO®", then 15 answered by the new firmware), and then the
 # firmware at work: a program downloaded and run.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The ROM's checks (rcx-hardware.md §2.1-2.2): an image without the knock string inside 8000-CBFF is downloaded but
 # not started; the brick stays in the ROM and reports no firmware.
 . "$E2E_DIR/lib.sh"

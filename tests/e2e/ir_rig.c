@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The IR test bench (ir_rig.h). */
 #include <stdarg.h>
 #include <stddef.h>

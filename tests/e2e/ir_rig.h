@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * A brick with its IR receiver and transmitter on a test bench: bytes are fed in as the UART driver would, what the
  * brick transmits is collected and, like on the brick (rcx-hardware.md §3.8), heard back as its own echo.

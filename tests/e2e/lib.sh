@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 # Sourced by every end-to-end test. CTest sets RCXSIM (the virtual RCX), NQC, E2E_DIR (this folder) and
 # E2E_TMP (a scratch folder in the build tree). Every host-tool call is bounded by `timeout`, and the simulator is
 # killed (by its own pid) however the test ends.

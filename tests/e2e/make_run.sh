@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make run` (host_sim/demo.sh): nqc's progress line and the trace's JSON lines do not share a line of the terminal,
 # and the trace is still shown. The demo runs until interrupted: it gets SIGINT, as from Ctrl-C, after 15 s.
 . "$E2E_DIR/lib.sh"

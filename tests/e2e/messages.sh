@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # IR messages (nqc -msg: F7 n) and the LEGO remote's commands (nqc -remote: D2 lo hi, spec p. 61), checked by
 # polling source 15 (message), 8 (program slot) and variables, and by the motors and sound in the trace.
 . "$E2E_DIR/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # PBTurnOff (60) from the room puts the brick in standby (hal_power_off): nothing is answered until On-Off is
 # pressed in the script; then the brick answers again with its program memory intact.
 . "$E2E_DIR/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The README's commands, as a newcomer copies them: every nqc command line in it that compiles a program names the
 # RCX 2.0 target, or Swan's in its own section (Debian's nqc compiles for the RCX 1.0 by default, where SetUserDisplay
 # does not exist), and the virtual RCX's example, run as written against rcxsim, downloads and starts an RCX 2.0

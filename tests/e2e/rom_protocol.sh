@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The ROM's download protocol packet by packet, from a script into the room (no host tool): every status code of
 # 45 (0 OK, 3 block checksum / out of order, 4 firmware checksum, 6 not active), the unlock refused and accepted,
 # and the firmware then answering. The brick's replies are the "ir" lines of the trace.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The virtual RCX without a host tool: an nqc image preloaded with --load, started by an IR packet from the script
 # (71 00, StartTask 0), a sensor value changed by the script, as fast as possible, and the trace of what followed.
 . "$E2E_DIR/lib.sh"

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Swan programs (nqc -TSwan, issue 16) on the virtual RCX, downloaded by the real nqc over the tower and checked by
 # polling their globals over IR (source 43, any of the 256). Two bricks in one room: brick 0 sends a message with a
 # parameter (0xC3: on the wire B3 m lo hi, then F7 m, vm/remote.h) and a plain one; brick 1's program reads Message()

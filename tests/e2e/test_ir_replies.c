@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Every direct command through the IR layer, byte-exact: reply opcode = complement of the opcode byte as received,
  * reply lengths as nqc expects them (host-tools.md §1), values from the spec (pp. 12-97) and reference-firmware.md

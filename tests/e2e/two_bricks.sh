@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Two bricks in one room, each with its own tower: brick 0's program sends two IR messages (SendPBMessage), brick 1
 # receives them (source 15; both go out as F7, as firm0328 sends them: a message is never taken for a repeat); each
 # tower talks to its own brick only.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # rcxsim refuses what it cannot do, with a one-line message and exit status 2, instead of running half set up.
 . "$E2E_DIR/lib.sh"
 # Each refusal is one line, "rcxsim: " first, naming the option (or argument) it refuses: refused "what" NAME args...
@@ -26,6 +27,10 @@ refused "two ttys, one brick" --tty --tty "$WORK/a" --tty "$WORK/b"
 refused "slot 9" "slot 9" --load "$WORK/prog.rcx:9"
 refused "hub without address" --tcp-join --tcp-join
 refused "hub port too large" --tcp --tcp 127.0.0.1:65536
+refused "two TCP towers, one brick" --tcp-tower --tcp-tower 127.0.0.1:0 --tcp-tower 127.0.0.1:0
+grep -q 'more than the 1 brick' "$WORK/out" || fail "two TCP towers: no reason: $(cat "$WORK/out")"
+refused "TCP tower port too large" "--tcp-tower 127.0.0.1:65536" --tcp-tower 127.0.0.1:65536
+grep -q 'PORT 0-65535' "$WORK/out" || fail "TCP tower port: no reason: $(cat "$WORK/out")"
 refused "missing script" --script --script "$WORK/none.txt"
 refused "trace nowhere" --trace --trace "$WORK/no/such/dir/trace.jsonl"
 printf '100 sensor 4 raw 10\n' >"$WORK/s1"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Helpers shared by the event tests (tests/unit/test_events.c, tests/events/test_calibration.c): direct commands
  * as a host sends them, inputs set by hand, and a watching task.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Access control and monitoring across tasks, with hand-assembled byte-code programs (spec pp. 26, 69, 85, 98,
  * 106-107): a higher priority seizing a motor (the loser takes its handler, its motors brake), equal priorities

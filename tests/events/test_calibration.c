@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * CalibrateEvent (spec pp. 74, 103-105) against the spec's formulas worked out by hand, and bad event operands
  * (event numbers above 15, unknown types, sensors above 10, counters above 2): ignored without side effects.

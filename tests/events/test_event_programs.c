@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Event and access-control programs compiled by the real nqc (-TRCX2), downloaded into a fresh brick as `nqc -d`
  * does, started as `nqc -run` does, and run on simulated time with scripted inputs; their variables are then

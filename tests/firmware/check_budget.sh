@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The image's budgets: at most 16 384 bytes downloaded (the S-records: the image's head, its unpacker and the rest
 # packed), at least 12 400 bytes of program memory on an empty brick (the arena the link left, symbol
 # _rcx_arena_size), entry at 0x8000. The unpacked image (up to _rcx_image_end) may be larger than the download. It

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The firmware drives the hardware itself: no jsr/jmp may reach the ROM (addresses below 0x8000), except the
 # single hand-back `jmp @@0:8` through the reset vector (GoIntoBootMode, rcx-hardware.md 2.4), which must exist.
 # Memory-indirect jumps and calls (@@aa:8) go through the ROM's vector table, so any other one is a ROM call.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Checks a firmware image in S-record form the way the RCX ROM and the download tools will see it
  * (rcx-hardware.md 1.3, 2.1, 2.2, 2.5), and prints its size and the checksum a downloader announces.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Worst-case stack use of the firmware, from its disassembly, against the room the link left for the stack.
 #
 # Each function's frame is followed instruction by instruction (pushes, pops, adds/subs and add.w of a loaded

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The download carries "OpenRCX <version>" for people to read (drivers/CMakeLists.txt), NUL on both sides, and the
 # image as it runs does not: the text costs no program memory.
 #   check_version.sh <objcopy> <openrcx.srec> <openrcx.bin> <version>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The firmware's integer helpers (drivers/arith/arith.c), compiled for the host under their rcx_ names,
  * against C's own operators: every pair of a list of edge values, then a few hundred thousand

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Shared by the fuzzers: a brick populated with known code in every slot and a datalog, and the invariants
  * checked after every input. A violated invariant aborts with a message, which libFuzzer reports as a crash.

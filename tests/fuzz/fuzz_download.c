@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Fuzzer 3 of issue 6: random interleavings of download, delete, select, start/stop and other direct commands with
  * wrong sizes, numbers, checksums and orders, on a populated brick.

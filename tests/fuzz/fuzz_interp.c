@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Fuzzer 2 of issue 6: arbitrary task and subroutine code downloaded into slot 2 of a populated brick and run for a
  * bounded time with changing sensor input and events armed.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Fuzzer 1 of issue 6: arbitrary byte streams into the IR receive path of a whole brick (packet layer, toggle
  * handling, direct commands, downloads), with the brick's own echo fed back as a serial tower hears it.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Runs a fuzzer's entry point over stored inputs, for builds without libFuzzer: `replay FILE|DIR ...`.
  * Every corpus file becomes a regression test in `make test`.

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # run.sh FUZZER CORPUS WORKDIR SECONDS: run one libFuzzer binary for SECONDS on a copy of the stored corpus
 # (the source tree is never written) and print one summary line. Fails on any crash, leak or invariant violation;
 # the failing input is left in WORKDIR as crash-*, to be added to the corpus and to a unit test. Paths may be

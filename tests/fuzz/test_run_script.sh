@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The fuzz driver (run.sh) as `make fuzz` uses it: from the top of a clone, with paths relative to it.
 #   test_run_script.sh SOURCE_DIR [FUZZER]
 # Without FUZZER: a fuzzer that cannot be started must fail the run, and its summary must not claim "0 failures".

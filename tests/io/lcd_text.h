@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * For tests: what the RCX glass should show, built from the segment map of rcx-hardware.md §3.6 restated here, so
  * that expected LCD images are written as the text a person would read ("-1.23", "----") and never taken from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The engines end to end: each io_*.nqc program here, compiled by the real `nqc -TRCX2`, is downloaded into a host
  * brick as `nqc -d` does and started as `nqc -run` does. Every simulated millisecond this driver feeds each input

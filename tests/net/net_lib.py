@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """Shared by the TCP link tests: rcxsim as the IR hub on a free loopback port, and a client that talks to it the way
 NQC 4's TCP link (-Stcp) does (stdlib only).
 
@@ -184,3 +185,86 @@ class Client:
                 r = self.command([0x45, seq & 0xFF, seq >> 8, len(block), 0] + list(block) + [sum(block) & 0xFF], 2)
                 check(r is not None and r[1] == 0, "download: block %d of %s %d: %r" % (n, kind, number, r))
         check(self.command([0x51, 0x05], 1) is not None, "download: no reply to the sound")
+
+
+class StandInHub:
+    """ir_hub.py, the stand-in for brickEmu's ir-server (relay to all, echo to the sender, no pacing), on a free
+    loopback port or the given one; stop() kills it (by its own pid), as ir-server ends when its last client
+    leaves."""
+
+    def __init__(self, port=0):
+        self.proc = subprocess.Popen([sys.executable, os.path.join(HERE, "ir_hub.py"), str(port)],
+                                     stdout=subprocess.PIPE, preexec_fn=_die_with_parent)
+        line = self.proc.stdout.readline().decode()
+        check(line.startswith("port "), "the stand-in hub did not start: %r" % line)
+        self.port = int(line.split()[1])
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
+        self.proc.stdout.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, value, tb):
+        self.stop()
+
+
+class PtyTower:
+    """A serial tower that is a client of a TCP hub: a pseudo-terminal at `path` for Debian's nqc 3.1 (which has
+    no TCP link), whose bytes a thread copies to the hub and the hub's (its echo included, as a serial tower hears
+    itself) back, as they come."""
+
+    def __init__(self, port, path):
+        import pty
+        import threading
+        import tty
+        self.master, self.slave = pty.openpty()
+        tty.setraw(self.slave)
+        self.path = path
+        os.symlink(os.ttyname(self.slave), path)
+        self.sock = socket.create_connection(("127.0.0.1", port), timeout=5)
+        self.sock.setsockopt(socket.IPPROTO_TCP, socket.TCP_NODELAY, 1)
+        self.stopping = False
+        self.sent = bytearray()     # everything the host tool wrote
+        self.thread = threading.Thread(target=self._copy, daemon=True)
+        self.thread.start()
+
+    def _copy(self):
+        while not self.stopping:
+            r, _, _ = select.select([self.master, self.sock], [], [], 0.1)
+            try:
+                if self.master in r:
+                    data = os.read(self.master, 4096)
+                    self.sent += data
+                    self.sock.sendall(data)
+                if self.sock in r:
+                    data = self.sock.recv(4096)
+                    if not data:
+                        return
+                    os.write(self.master, data)
+            except OSError:
+                return
+
+    def resent(self):
+        """How many packets the host tool sent again right after sending them (a retry: nqc flips bit 3 of an
+        opcode equal to the previous one, so only a retry repeats a packet)."""
+        starts = [i for i in range(len(self.sent)) if self.sent[i:i + 3] == b"\x55\xff\x00"]
+        packets = [bytes(self.sent[a:b]) for a, b in zip(starts, starts[1:] + [len(self.sent)])]
+        return sum(1 for a, b in zip(packets, packets[1:]) if a == b)
+
+    def close(self):
+        self.stopping = True
+        self.thread.join(timeout=2)
+        self.sock.close()
+        os.unlink(self.path)
+        os.close(self.master)
+        os.close(self.slave)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, value, tb):
+        self.close()

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """rcxsim --tcp / --tcp-join (issue 17 §3): one case per run, named on the command line.
 
   nqc_link     a client speaking as NQC 4's TCP link: ping, a program download, start, polls until it ran
@@ -9,6 +10,13 @@
                hub's echo does not come back into the joining room, and its tower works beside the link
   together     with --tty (the real nqc on a tower), --bricks 2, --panel, --speed: one room
   refused      a port in use, an address that cannot be bound, a hub that is not there: one line, exit status 2
+  irserver     rcxsim --rom --tcp-join on a hub that relays without pacing (a stand-in for brickEmu's ir-server):
+               Debian's nqc, on a tower that is another client of that hub, flashes the firmware and downloads a
+               program the first time, each packet answered on its first try
+  towers       --bricks 2 with a --tcp-tower each: a client of brick 0's tower downloads and runs a program on
+               brick 0 alone, while a client of brick 1's tower finds brick 1 untouched; each ping has one reply
+  rejoin       rcxsim --tcp-join on that stand-in, which goes away and comes back on the same port: rcxsim says so
+               on one line each time, tries again with a growing wait, joins it again, and a message passes
 """
 import http.client
 import json
@@ -19,7 +27,7 @@ import subprocess
 import sys
 import time
 
-from net_lib import NQC, RCXSIM, Hub, check, compile_rcx, fail, frame, wait_for
+from net_lib import NQC, RCXSIM, Client, Hub, PtyTower, StandInHub, check, compile_rcx, fail, frame, wait_for
 
 MSG5 = frame([0xF7, 5])
 MSG6 = frame([0xF7, 6])
@@ -124,13 +132,21 @@ def case_clients16():
         check(hub.alive(), "the hub went away")
 
 
+def answer_program(tag, brick=""):
+    """Two scratch files: answer.nqc compiled, and a script that presses Run on `brick` ("@1 ", or "" for brick 0)
+    to start it."""
+    tmp = os.environ.get("NET_TMP", "/tmp")
+    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%s%d.rcx" % (tag, os.getpid())))
+    press = os.path.join(tmp, "press.%s%d.txt" % (tag, os.getpid()))
+    with open(press, "w") as f:
+        f.write("0 %sbutton run down\n50 %sbutton run up\n" % (brick, brick))
+    return answer, press
+
+
 def case_join():
     tmp = os.environ.get("NET_TMP", "/tmp")
-    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%d.rcx" % os.getpid()))
+    answer, press = answer_program("j")
     listen = compile_rcx("listen.nqc", os.path.join(tmp, "listen.%d.rcx" % os.getpid()))
-    press = os.path.join(tmp, "press.%d.txt" % os.getpid())
-    with open(press, "w") as f:
-        f.write("0 button run down\n50 button run up\n")
     try:
         with Hub("--speed", "4", "--load", answer, "--script", press) as hub:
             tty = os.path.join(hub.work, "tty")
@@ -165,10 +181,7 @@ def case_join():
 
 def case_together():
     tmp = os.environ.get("NET_TMP", "/tmp")
-    answer = compile_rcx("answer.nqc", os.path.join(tmp, "answer.%d.rcx" % os.getpid()))
-    press = os.path.join(tmp, "press1.%d.txt" % os.getpid())
-    with open(press, "w") as f:
-        f.write("0 @1 button run down\n50 @1 button run up\n")
+    answer, press = answer_program("t", "@1 ")
     try:
         with Hub("--speed", "10", "--bricks", "2", "--load", "1@" + answer, "--script", press, "--panel", "0",
                  "--tty", os.path.join(tmp, "tty.%d" % os.getpid())) as hub:
@@ -227,6 +240,102 @@ def case_refused():
     refused("both", ["--tcp", "127.0.0.1:0", "--tcp-join", "127.0.0.1:%d" % free], ["--tcp", "--tcp-join"])
 
 
+def first_try(tower, what, args):
+    """Debian's nqc on the tower; it must succeed with no packet sent twice (nqc resends the same bytes when a
+    reply does not come in time: the hub relays each of them, so the brick hears them all)."""
+    tower.sent.clear()
+    start = time.monotonic()
+    r = subprocess.run([NQC, "-S" + tower.path] + args, capture_output=True, timeout=200)
+    took = time.monotonic() - start
+    out = (r.stdout + r.stderr).decode("utf-8", "replace")
+    check(r.returncode == 0, "%s failed after %.1f s: %s" % (what, took, out))
+    check(tower.resent() == 0, "%s: %d packets sent again (no reply in time)" % (what, tower.resent()))
+    return out, took
+
+
+def case_irserver():
+    firmware = os.environ["FIRMWARE"]
+    check(os.path.exists(firmware), "no firmware image %s (make firmware)" % firmware)
+    with StandInHub() as hub, Hub("--rom", tcp=("--tcp-join", "127.0.0.1:%d" % hub.port)) as joined:
+        with PtyTower(hub.port, os.path.join(joined.work, "tty")) as tower:
+            out, took = first_try(tower, "nqc -firmware", ["-firmware", firmware])
+            check("Current Version: 00030001/00030208" in out, "nqc -firmware said: %s" % out)
+            print("firmware through the hub: %.1f s" % took)
+            out, took = first_try(tower, "nqc -d", ["-TRCX2", "-d", os.path.join(os.path.dirname(__file__),
+                                                                                  "count.nqc"), "-run"])
+            print("download through the hub: %.1f s" % took)
+            wait_for("variable 0 = 42", lambda: subprocess.run(
+                [NQC, "-S" + tower.path, "-raw", "120000"], capture_output=True, timeout=30).stdout.split() ==
+                [b"2a", b"00"], seconds=10, every=0.2)
+        check(joined.alive(), "rcxsim --tcp-join went away: " + joined.messages())
+
+
+def case_towers():
+    with Hub("--speed", "4", "--bricks", "2", "--tcp-tower", "127.0.0.1:0", tcp=("--tcp-tower", "127.0.0.1:0")) as sim:
+        def ports():
+            found = {}
+            for line in sim.messages().splitlines():
+                if line.startswith("rcxsim: IR tower of brick ") and line.endswith(" (tcp)"):
+                    found[int(line.split()[5])] = int(line.split(":")[2].split()[0])
+            return found if len(found) == 2 else None
+        towers = wait_for("both towers' addresses", ports)
+        a, b = Client(towers[0]), Client(towers[1])
+        for name, c in (("brick 0's", a), ("brick 1's", b)):
+            c.read(0.2)
+            c.heard.clear()  # a tower hears every brick's replies (the other tower's ping's too): count from here
+            check(c.ping(), "%s tower: no reply to the ping" % name)
+            c.read(0.2)
+            check(c.heard.count(frame([0xEF])) == 1, "%s tower: %d replies to one ping, expected one"
+                  % (name, c.heard.count(frame([0xEF]))))
+        a.download(compile_rcx("count.nqc", scratch(sim, "count.rcx")))
+        check(a.command([0x71, 0], 1) is not None, "brick 0's tower: no reply to start task 0")
+        wait_for("variable 0 = 42 on brick 0", lambda: a.poll(0, 0) == 42, seconds=10, every=0.1)
+        check(b.poll(0, 0) == 0, "brick 1 ran the program sent to brick 0")
+        check(b.command([0x12, 8, 0], 3) is not None, "brick 1's tower: no reply")
+        check(frame([0x71, 0]) not in b.heard and frame([0x79, 0]) not in b.heard,
+              "brick 0's tower's commands reached brick 1's tower")
+        a.close()
+        b.close()
+
+
+def case_rejoin():
+    answer, press = answer_program("r")
+
+    def answered(port):
+        c = Client(port)
+        c.write(MSG5)
+        wait_for("the joined brick's answer", lambda: (c.read(0.1), MSG6 in c.heard)[1], seconds=10)
+        c.close()
+
+    def said(text):
+        return lambda: [l for l in joined.messages().splitlines() if text in l]
+
+    try:
+        first = StandInHub()
+        port = first.port
+        with Hub("--load", answer, "--script", press, tcp=("--tcp-join", "127.0.0.1:%d" % port)) as joined:
+            wait_for("the join's line", said("rcxsim: joined the IR hub at 127.0.0.1:%d (tcp)" % port))
+            time.sleep(0.3)  # the program started
+            answered(port)
+            first.stop()
+            wait_for("the line saying the hub went away", said(
+                "rcxsim: --tcp-join 127.0.0.1:%d: the hub closed the connection; joining again in 1 s" % port))
+            wait_for("the line saying the first try found no hub",
+                     said("--tcp-join 127.0.0.1:%d: no hub (Connection refused); joining again in 2 s" % port),
+                     seconds=5)
+            with StandInHub(port):
+                wait_for("the line saying it joined again", said("--tcp-join 127.0.0.1:%d: joined the IR hub again"
+                                                                 % port), seconds=5)
+                answered(port)
+                lines = joined.messages().splitlines()
+                check(len(lines) == 4 and all(l.startswith("rcxsim: ") for l in lines),
+                      "not one line each: %r" % lines)
+                check(joined.alive(), "rcxsim went away")
+    finally:
+        os.unlink(answer)
+        os.unlink(press)
+
+
 CASES = {
     "nqc_link": case_nqc_link,
     "message": case_message,
@@ -235,6 +344,9 @@ CASES = {
     "join": case_join,
     "together": case_together,
     "refused": case_refused,
+    "irserver": case_irserver,
+    "rejoin": case_rejoin,
+    "towers": case_towers,
 }
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The package holds the files the issue lists, under /usr, and its control fields are what they must be.
 . "$PACKAGE_DIR/lib.sh"
 case "$(basename "$DEB")" in
@@ -21,7 +22,8 @@ for f in ./usr/bin/rcxsim ./usr/share/openrcx/openrcx.srec ./usr/share/openrcx/o
     ./usr/share/openrcx/panel/index.html ./usr/share/openrcx/panel/panel.js ./usr/share/openrcx/panel/panel.css \
     ./usr/share/openrcx/panel/brick.svg ./usr/share/openrcx/panel/world.js \
     ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
-    ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/copyright ./usr/share/doc/openrcx/changelog.gz \
+    ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/README.Debian ./usr/share/doc/openrcx/copyright \
+    ./usr/share/doc/openrcx/changelog.gz ./usr/share/doc/openrcx/world.md \
     ./usr/share/openrcx/scenes/testpad.json ./usr/share/openrcx/scenes/testpad.png \
     ./usr/share/openrcx/scenes/arena.json ./usr/share/openrcx/scenes/maze.json \
     ./usr/share/openrcx/scenes/two_robots.json ./usr/share/openrcx/scenes/paper.png; do
@@ -35,6 +37,12 @@ if grep -v ' \./usr/\| \./$\| \./usr$' "$WORK/list"; then fail "files outside /u
 for p in man1/rcxsim.1.gz man7/openrcx.7.gz; do
     gzip -dc "$WORK/root/usr/share/man/$p" | grep -q "^\.TH .*\"OpenRCX $VERSION\"" || fail "$p: no version $VERSION"
 done
+# README.Debian speaks of the installed paths, not of a build tree's (issue 23 §4)
+rd="$WORK/root/usr/share/doc/openrcx/README.Debian"
+for p in /usr/bin/rcxsim /usr/share/openrcx/openrcx.lgo /usr/share/openrcx/panel/ 'man rcxsim'; do
+    grep -q -F -- "$p" "$rd" || fail "README.Debian does not name $p"
+done
+if grep -n 'build/' "$rd"; then fail "README.Debian names build paths"; fi
 # The firmware image is the one `make firmware` built, and carries the version
 cmp -s "$WORK/root/usr/share/openrcx/openrcx.srec" "$WORK/root/usr/share/openrcx/openrcx.lgo" ||
     fail "openrcx.srec and openrcx.lgo differ"

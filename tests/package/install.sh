@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # `make install` (cmake --install, DESTDIR and a prefix) installs the same files as the package, and that rcxsim
 # finds the installed panel: the installed copy is marked, and the page served carries the mark.
 . "$PACKAGE_DIR/lib.sh"

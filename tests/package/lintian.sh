@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Debian's package checker finds no error in the package (README.md lists the warnings kept, and why).
 . "$PACKAGE_DIR/lib.sh"
 command -v "$LINTIAN" >/dev/null 2>&1 || fail "lintian is not installed (make installs it)"

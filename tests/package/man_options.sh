@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # rcxsim(1)'s OPTIONS section documents exactly the options `rcxsim --help` lists, no more, no fewer. Both lists
 # are read the same way: each entry's tag (a line that starts, indented, with "-"; "-h, --help" counts twice).
 #   man_options.sh <rcxsim> <groff> <rcxsim.1>

@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # Each man page renders with no warning, through groff (all warnings on) and through man-db as man(1) shows it.
 #   man_render.sh <groff> <man> <page>...
 set -u

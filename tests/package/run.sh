@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: MPL-2.0
 # The package works from wherever it is unpacked: dpkg-deb -x into a scratch folder, then that folder's rcxsim runs
 # a brick on a pseudo-terminal with its panel; the real nqc downloads and starts a program; the panel's page (read
 # from the unpacked files, not the source tree: a mark is added to the unpacked copy) and /state answer.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """Shared by the panel tests: rcxsim with --panel on a free loopback port, and small HTTP helpers (stdlib only).
 
 Every wait is bounded, and the simulator is stopped (by its own pid) however a test ends.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """rcxsim --panel over HTTP: GET /state, inputs by POST and what they do to a running program, the event stream,
 and every kind of bad request (each refused with a 4xx and a one-line reason, the simulator unharmed)."""
 import json

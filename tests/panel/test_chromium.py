@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """The panel end to end in a real browser: rcxsim with a tower and the panel, a program downloaded and started by
 the real nqc, the page opened in Debian's headless Chromium (driven by chromedriver through python3-selenium).
 From the page: output A forward, the LCD showing the program's slot and number; a real click on Run stops the

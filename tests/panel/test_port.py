@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MPL-2.0
 """Two rcxsim --panel on one port: the second is refused (one line naming the port, exit status 2) instead of both
 serving it and sharing its requests; the first keeps answering."""
 import os

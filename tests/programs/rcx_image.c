@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Reading nqc's .rcx files and downloading them as `nqc -d` does; see rcx_image.h. */
 #include <errno.h>
 #include <stdarg.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The .rcx files nqc writes (`nqc -O<file>`), read into memory and downloaded into a brick.
  *

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * End-to-end program tests: a .nqc program compiled by the real nqc, downloaded into a fresh brick the way
  * `nqc -d` does it, started the way `nqc -run` does it (71 00), run for a stretch of simulated time, and its

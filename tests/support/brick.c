@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 #include <stdlib.h>
 #include <string.h>
 #include "brick.h"

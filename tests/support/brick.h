@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Test harness: a brick driven only through the machine's public interface. */
 #ifndef TEST_BRICK_H
 #define TEST_BRICK_H

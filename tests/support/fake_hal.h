@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * A recording implementation of hal.h for host tests: every output call is remembered per brick (rcx.port), so a
  * test can assert exactly what the hardware would have been told.

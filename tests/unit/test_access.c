@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The access-control & event-monitoring state machine (spec p. 107), cell by cell. Multi-task scenarios (priorities,
  * equal priority pre-empting, revoked motors braking, release on stop, EndOfSub, program change) are in

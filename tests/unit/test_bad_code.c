@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Bad byte code must never crash the machine or corrupt anything outside what a valid instruction may change.
  *   - unknown opcodes are skipped by the length in their low three bits, 6 and 7 meaning 0 and 1 (spec p. 5);

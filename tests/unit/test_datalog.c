@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The datalog: SetDataLog 0x52 (spec p. 54), DataLogNext 0x62 (p. 55), Upload 0xA4 (p. 84), read the way
  * `nqc -datalog` reads it (host-tools.md §2), in program memory as the memory map shows it (p. 13,

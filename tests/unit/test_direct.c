@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Direct commands: byte-exact replies and effects, derived from LEGO's "RCX 2.0 Firmware Command Overview"
  * (spec, pp. 12-97), reference-firmware.md (firm0328 as observed) and host-tools.md (reply lengths nqc expects).

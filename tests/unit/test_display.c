@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Display engine: the segment image handed to hal_lcd() (rcx-hardware.md §3.6) for each view of SelectDisplay
  * (spec p. 66), ViewSourceValue (p. 97), the watch (p. 51), the program number, running figure, input and output

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The event engine against the spec's numbers: SetEvent defaults (p. 71), state change points with hysteresis
  * (reference-firmware.md), click and double-click timing (pp. 71, 102), the valid sensor/type combinations

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Control-flow byte codes (spec pp. 26, 31-33, 39-41, 47, 56-58, 62, 67, 73, 93-94), with encodings as nqc emits
  * them (host-tools.md §4). Every distance counts from the first byte of its own field (spec p. 11):

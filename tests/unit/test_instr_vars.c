@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Variable arithmetic SetVar..OrVar (0x14-0x94, spec pp. 75-83) from several sources, run as program code and as
  * direct commands. Edge values follow reference-firmware.md "Arithmetic" (observed on firm0328); variable ranges

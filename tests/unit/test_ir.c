@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The IR packet layer (src/ir.c) driven byte by byte, the way the UART driver feeds it, with the recording HAL
  * behind it. Expected bytes come from host-tools.md §1 (framing, reply lengths), reference-firmware.md (headers,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* The firmware's own memcpy/memmove/memset/memcmp (drivers/libc/string.c), compared with the host C library. */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Program memory and downloads: MemMap 0x20 (spec p. 13), BeginOfTask 0x25 / BeginOfSub 0x35 (pp. 88-89),
  * ContinueDL 0x45 (p. 90), UploadRam 0x63 (p. 68), and firm0328's observed download rules (reference-firmware.md,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The instruction table (include/rcx_opcodes.def) checked row by row against the specification:
  *   - every opcode of the spec's table of contents (pp. 2-3) has exactly one row, and there are no others;

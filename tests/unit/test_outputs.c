@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Output engine: the effective output handed to hal_motor() (direction after the global invert, power capped by the
  * global maximum, global disconnect as off or float), the six motor states and the 60 ms reversing pause of spec

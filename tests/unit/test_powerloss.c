@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * A download interrupted at every block boundary (the host goes away, the tower is unplugged, the batteries of the
  * laptop die) leaves the brick answering, every other program intact, and the failed slot empty or whole.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Steady inputs (vm/sensors.c, vm/events.c): once an input's last three samples are equal, a further equal sample
  * is not worked out again, and only the events watching the input are told. Nothing a program or a host can see

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Quiet milliseconds (src/runtime.h): a brick whose port sleeps through the milliseconds rt_quiet() allows and
  * counts them with rt_skip() must be, every time it has caught up, byte for byte the brick that ran rt_tick() and

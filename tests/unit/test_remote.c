@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * RemoteCommand 0xD2 (spec p. 61 table, p. 98 motor scheme) and the transmit requests of SendPBMessage 0xB2
  * (p. 59) and SendUARTData 0xC2 (p. 60, source 33 layout p. 9), at the machine's level (the IR layer's handling

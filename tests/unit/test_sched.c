@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Scheduling and time: round-robin shares (reference-firmware.md "Tasks and timing"), waiting tasks, the 100 ms
  * timers and their 10 ms view (spec pp. 5, 6, 8; reference-firmware.md), ClearTimer (p. 34), the watch (p. 7, 51).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sensor engine: types and default modes (spec p. 52), modes and slope (p. 53, p. 102), the conversions of
  * rcx-hardware.md §3.3 and reference-firmware.md "Sensors". Every expected number below is worked out from those

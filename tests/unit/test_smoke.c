@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /* Smoke test: an nqc-shaped x++ loop downloaded and run. */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sound engine: the 8-entry queue (reference-firmware.md), tones of 31-20 000 Hz in 10 ms units with rests for
  * other frequencies, the six system sounds of rcx-hardware.md §3.7, ClearSound, Mute/Unmute (spec pp. 19, 23-24,

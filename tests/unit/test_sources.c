@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Parameter sources 0-36 (spec pp. 6-10): reads through Poll 0x12 and SetVar 0x14, writes through
  * SetSourceValue 0x05 (p. 86), with firm0328's observed details from reference-firmware.md.

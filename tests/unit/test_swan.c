@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Swan's byte codes (issue 16): every opcode of swan-target.md 2 with its byte layout as the table there and
  * `nqc -TSwan -L` give it, every source of 3, and the OpenRCX rules of 4. Expected values are worked out from those

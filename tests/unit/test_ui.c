@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MPL-2.0 */
 /*
  * The brick's user interface (src/ui.c) driven the way the drivers drive it: debounced button edges, one rt_tick
  * per millisecond, rt_run in the main loop, with the recording HAL behind it. Expected behaviour: spec p. 98 (motor

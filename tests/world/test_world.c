@@ -170,6 +170,30 @@ static void float_coasts_and_brake_stops(void **state)
     }
 }
 
+/* A robot pushes a movable obstacle, even one that has been still long enough to sleep, and a fixed one stops both:
+ * the arena's 80 mm yellow box at (700, 400), the robot 150 mm west of it facing it, both left alone for 2 s, then
+ * driven for 2 s. */
+static void robot_pushes_a_sleeping_obstacle(void **state)
+{
+    struct world *w = load("arena.json");
+    struct world_brick_io io = { 0 };
+    char json[4096];
+    const char *box;
+    double x;
+    (void)state;
+    assert_int_equal(world_place(w, 1, 0, 550, 400, 0), 0);
+    steps(w, &io, 1, 2000);
+    io.motor[0] = io.motor[2] = FWD7;
+    steps(w, &io, 1, 2000);
+    world_pose_json(w, json, sizeof json);
+    box = strstr(json, "{\"i\":3,\"x\":");
+    assert_non_null(box);
+    assert_int_equal(sscanf(box, "{\"i\":3,\"x\":%lf", &x), 1);
+    /* Pushed east at about 263 mm/s until it meets the fixed box whose west face is at x 1020: its centre at 980. */
+    assert_true(x > 975 && x < 985);
+    world_free(w);
+}
+
 static void placing_checks_the_floor_and_the_index(void **state)
 {
     struct world *w = load("arena.json");
@@ -254,6 +278,7 @@ int main(void)
         cmocka_unit_test(rotation_counts_sixteen_a_turn_forwards),
         cmocka_unit_test(light_noise_is_seeded),
         cmocka_unit_test(float_coasts_and_brake_stops),
+        cmocka_unit_test(robot_pushes_a_sleeping_obstacle),
         cmocka_unit_test(placing_checks_the_floor_and_the_index),
         cmocka_unit_test(scene_json_has_the_panel_shapes),
         cmocka_unit_test(floor_picture_replaced_or_refused),
