@@ -3,15 +3,16 @@
 
 drive: rcxsim --world testpad with a tower; the real nqc downloads drive.nqc (A and C forward for 3 s, then off) and
        runs it; the page, read while it draws, shows the robot moving on the floor: the pose it drew changes many
-       times (interpolated between the poses rcxsim sends), by more than 250 mm, and ends where rcxsim says the robot is; the canvas's pixels show the robot's body
-       where the page says the robot is, no longer where it started, and its trail between. A screenshot,
-       world-panel.png, goes to the folder given.
+       times (interpolated between the poses rcxsim sends), by more than 250 mm, and ends where rcxsim says the
+       robot is; the canvas's pixels show the robot's body where the page says the robot is, no longer where it
+       started, and its trail between. A screenshot, world-panel.png, goes to the folder given.
 drag:  rcxsim --world arena; the robot and a movable obstacle dragged with the pointer land where they were dropped
        (the robot's pose in rcxsim's trace, the obstacle's in GET /world/pose); a fixed obstacle does not move; put
-       against a wall, the robot's bumpers are drawn red (pressed); the scene picker switches to the test pad; a floor picture chosen in the file input replaces the floor, and a file
-       that is not a PNG is refused with the server's reason on the page.
+       against a wall, the robot's bumpers are drawn red (pressed); the scene picker switches to the test pad; a
+       floor picture chosen in the file input replaces the floor, and a file that is not a PNG is refused with the
+       server's reason on the page.
 eight: eight robots on a walled floor (eight bricks), each turning round a braked wheel (circle.nqc): the page
-       draws all eight, moving, at the browser's frame rate; prints the frames a second and the drawing time a frame measured over
+       draws all eight, moving; prints the frames a second and the drawing time a frame measured over
        EIGHT_SECONDS, and fails when drawing a frame takes more than MAX_DRAW_MS or the drawing loop stalls (headless
        Chromium draws 60 frames a second when the machine keeps up; a loaded machine gives fewer).
 
@@ -59,6 +60,12 @@ def read(driver, points=()):
     return driver.execute_script(READ_WORLD, [list(p) for p in points])
 
 
+def showing(driver, wanted, points=()):
+    """What the page drew, if `wanted` holds for it (None between a scene and its first poses)."""
+    page = read(driver, points)
+    return page if page and wanted(page) else None
+
+
 def near(a, b, tol):
     return all(abs(x - y) <= tol for x, y in zip(a, b))
 
@@ -82,7 +89,7 @@ def drive(shots):
             check(start["scene"] == get_json(sim, "/world")["scene"], "the scene: %r" % start["scene"])
             r0 = start["robots"][0]
             p0 = (r0["x"], r0["y"])
-            wait_for("the floor picture", lambda: read(driver)["floor"], seconds=10)
+            wait_for("the floor picture", lambda: showing(driver, lambda p: p["floor"]), seconds=10)
             subprocess.run([NQC, "-S" + tty, "-TRCX2", "-d", os.path.join(HERE, "drive.nqc"), "-run"], check=True,
                            timeout=90, stdout=subprocess.DEVNULL)
             seen, end = [], time.monotonic() + 20
@@ -103,9 +110,8 @@ def drive(shots):
                                                                                                    len(seen)))
             # Stopped: the page ends where rcxsim says the robot is.
             sim_pose = get_json(sim, "/world/pose")["robots"][0]
-            page = wait_for("the page to agree with rcxsim", lambda: (lambda p: p if near(
-                (p["robots"][0]["x"], p["robots"][0]["y"]), (sim_pose["x"], sim_pose["y"]), 1.0) else None)(
-                read(driver)), seconds=5)
+            page = wait_for("the page to agree with rcxsim", lambda: showing(driver, lambda p: near(
+                (p["robots"][0]["x"], p["robots"][0]["y"]), (sim_pose["x"], sim_pose["y"]), 1.0)), seconds=5)
             r = page["robots"][0]
             mid = ((2 * p0[0] + r["x"]) / 3, (2 * p0[1] + r["y"]) / 3)
             here, there, trail = read(driver, [behind(r, 40), p0, mid])["colours"]
@@ -173,8 +179,8 @@ def drag(shots):
             sim.post("/world/place?robot=0&x=1395&y=600&h=0")
             spec = get_json(sim, "/world")["robots"][0]
             touch = [t for t in spec["sensors"] if t["kind"] == "touch"]
-            page = wait_for("the pressed bumpers on the page", lambda: (lambda p: p if all(
-                p["robots"][0]["inputs"][t["input"] - 1] < 512 for t in touch) else None)(read(driver)))
+            page = wait_for("the pressed bumpers on the page", lambda: showing(driver, lambda p: all(
+                p["robots"][0]["inputs"][t["input"] - 1] < 512 for t in touch)))
             r = page["robots"][0]
             a = math.radians(r["h"])
             dots = [(r["x"] + t["x"] * math.cos(a) - t["y"] * math.sin(a), r["y"] + t["x"] * math.sin(a) +
@@ -185,8 +191,8 @@ def drag(shots):
 
             # Another scene from the picker.
             Select(driver.find_element(By.ID, "scene")).select_by_value("testpad")
-            wait_for("the test pad on the page", lambda: read(driver)["scene"] == get_json(sim, "/world")["scene"]
-                     and get_json(sim, "/world/scenes")["current"] == "testpad", seconds=10)
+            wait_for("the test pad on the page", lambda: showing(driver, lambda p: p["scene"] == get_json(
+                sim, "/world")["scene"] and get_json(sim, "/world/scenes")["current"] == "testpad"), seconds=10)
             check(len(get_json(sim, "/world")["robots"]) == 1, "one robot on the test pad")
 
             # A floor picture of its own, through the file input; then a file that is not a PNG.
@@ -198,12 +204,13 @@ def drag(shots):
                 f.write("not a picture\n")
             version = get_json(sim, "/world")["floor"]["version"]
             driver.find_element(By.ID, "floor-file").send_keys(good)
-            wait_for("the new floor on the page", lambda: read(driver)["floor"] == [140, 100], seconds=10)
+            wait_for("the new floor on the page", lambda: showing(driver, lambda p: p["floor"] == [140, 100]),
+                     seconds=10)
             check(get_json(sim, "/world")["floor"]["version"] > version, "the floor's version went up")
-            corner = read(driver, [(1300, 900)])["colours"][0]  # the test pad's far corner: no robot, no wall
-            check(near(corner, (30, 90, 200), 8), "the new floor drawn: %r" % corner)
+            wait_for("the new floor drawn in the test pad's far corner (no robot, no wall there)", lambda: showing(
+                driver, lambda p: near(p["colours"][0], (30, 90, 200), 8), [(1300, 900)]), seconds=5)
             driver.find_element(By.ID, "floor-file").send_keys(bad)
-            page = wait_for("the refusal on the page", lambda: (lambda p: p if p["statusBad"] else None)(read(driver)))
+            page = wait_for("the refusal on the page", lambda: showing(driver, lambda p: p["statusBad"]))
             check("PNG" in page["status"], "the server's reason shown: %r" % page["status"])
             for name in (good, bad):
                 os.unlink(name)
@@ -239,8 +246,7 @@ def eight(shots):
         try:
             driver.set_window_size(1900, 1000)
             driver.get("http://127.0.0.1:%d/" % sim.port)
-            first = wait_for("eight robots drawn", lambda: (lambda p: p if p and len(p["robots"]) == 8 else None)(
-                read(driver)), seconds=20)
+            first = wait_for("eight robots drawn", lambda: showing(driver, lambda p: len(p["robots"]) == 8), seconds=20)
             time.sleep(1)
             measure = "const w = window.worldView; return [performance.now(), w.frames, w.drawTotal, w.drawMax];"
             driver.execute_script("window.worldView.drawMax = 0;")
