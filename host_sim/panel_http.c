@@ -7,6 +7,7 @@
  *   POST /button?brick=B&button=onoff|run|view|prgm&action=down|up
  *   POST /sensor?brick=B&input=1-3&raw=0-1023
  *   POST /battery?brick=B&mv=0-65535             (brick defaults to 0; parameters in the query, no body)
+ *   /world...                                    the world, with --world (panel_world_http.c)
  * An input answers 204 once the simulation has applied it, 202 if it is still queued after a second. Anything else
  * gets a 4xx status and a one-line reason.
  */
@@ -21,33 +22,15 @@
 #include <string.h>
 #include <sys/socket.h>
 #include <time.h>
-#include <microhttpd.h>
-#include "panel.h"
+#include "panel_server.h"
 
 #define PANEL_JSON_MAX 16384      /* GET /state of 8 bricks is about 6 KB */
 #define PANEL_CONNECTIONS 64      /* open pages (each holds an event stream) and requests at once */
 #define PANEL_FILE_MAX (1 << 20)
 #define EVENT_GAP_MS 40           /* an event stream sends at most 25 snapshots a second */
+#define WORLD_GAP_MS 20           /* the world's stream 50 poses a second: the page interpolates between them */
 #define EVENT_KEEPALIVE_S 5       /* a comment line when nothing changed: finds closed pages */
 #define INPUT_WAIT_S 1
-
-struct panel_input {
-    int brick, kind, a, b;        /* as in struct sim_event */
-};
-
-struct panel {
-    struct MHD_Daemon *daemon;
-    pthread_mutex_t lock;         /* guards everything below */
-    pthread_cond_t changed;       /* the snapshot changed, inputs were applied, or the panel closes */
-    int closing;
-    int nbricks;
-    unsigned long version;        /* counts changes of the snapshot */
-    unsigned long long now_ms;
-    struct panel_brick shot[SIM_MAX_BRICKS];
-    struct panel_input queue[PANEL_QUEUE];
-    unsigned queued;              /* inputs in the queue */
-    unsigned long posted, applied; /* inputs ever queued, and applied by the simulation */
-};
 
 /* The files of the page, the only paths served from disk. */
 static const struct {
@@ -57,6 +40,7 @@ static const struct {
     { "/index.html", "index.html", "text/html; charset=utf-8" },
     { "/panel.css", "panel.css", "text/css; charset=utf-8" },
     { "/panel.js", "panel.js", "text/javascript; charset=utf-8" },
+    { "/world.js", "world.js", "text/javascript; charset=utf-8" },
     { "/brick.svg", "brick.svg", "image/svg+xml" },
 };
 
@@ -80,7 +64,7 @@ unsigned panel_take_inputs(struct panel *p, struct sim_event *ev)
     return n;
 }
 
-void panel_sync(struct panel *p, const struct sim *s, unsigned n)
+void panel_sync(struct panel *p, struct sim *s, unsigned n)
 {
     struct panel_brick shot[SIM_MAX_BRICKS];
     unsigned i;
@@ -100,6 +84,8 @@ void panel_sync(struct panel *p, const struct sim *s, unsigned n)
     if (changed || n)
         pthread_cond_broadcast(&p->changed);
     pthread_mutex_unlock(&p->lock);
+    if (p->world.on)
+        panel_world_sync(p, s);
 }
 
 /* ---- HTTP threads ---- */
@@ -120,8 +106,8 @@ static enum MHD_Result respond(struct MHD_Connection *c, unsigned status, struct
 }
 
 /* A malloc'ed body, freed whatever happens. */
-static enum MHD_Result send_buffer(struct MHD_Connection *c, char *data, size_t len, const char *type,
-                                   const char *cache)
+enum MHD_Result panel_send_buffer(struct MHD_Connection *c, void *data, size_t len, const char *type,
+                                  const char *cache)
 {
     struct MHD_Response *r = MHD_create_response_from_buffer(len, data, MHD_RESPMEM_MUST_FREE);
     if (!r)
@@ -129,18 +115,18 @@ static enum MHD_Result send_buffer(struct MHD_Connection *c, char *data, size_t 
     return respond(c, MHD_HTTP_OK, r, type, cache);
 }
 
-static enum MHD_Result send_text(struct MHD_Connection *c, unsigned status, const char *type, const char *text)
+enum MHD_Result panel_send_text(struct MHD_Connection *c, unsigned status, const char *type, const char *text)
 {
     struct MHD_Response *r = MHD_create_response_from_buffer(strlen(text), (void *)text, MHD_RESPMEM_MUST_COPY);
     return respond(c, status, r, type, "no-store");
 }
 
 /* A refusal: the status and a one-line reason. */
-static enum MHD_Result refuse(struct MHD_Connection *c, unsigned status, const char *why)
+enum MHD_Result panel_refuse(struct MHD_Connection *c, unsigned status, const char *why)
 {
     char line[256];
     snprintf(line, sizeof line, "%s\n", why);
-    return send_text(c, status, "text/plain; charset=utf-8", line);
+    return panel_send_text(c, status, "text/plain; charset=utf-8", line);
 }
 
 static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, const char *type)
@@ -153,13 +139,13 @@ static enum MHD_Result send_file(struct MHD_Connection *c, const char *name, con
     snprintf(path, sizeof path, "%s/%s", panel_files_dir(), name);
     f = fopen(path, "rb");
     if (!f)
-        return refuse(c, MHD_HTTP_NOT_FOUND, "page file missing from the installation");
+        return panel_refuse(c, MHD_HTTP_NOT_FOUND, "page file missing from the installation");
     data = malloc(PANEL_FILE_MAX);
     n = data ? fread(data, 1, PANEL_FILE_MAX, f) : 0;
     fclose(f);
     if (!data)
         return MHD_NO;
-    return send_buffer(c, data, n, type, "no-cache");
+    return panel_send_buffer(c, data, n, type, "no-cache");
 }
 
 static enum MHD_Result send_state(struct panel *p, struct MHD_Connection *c)
@@ -170,23 +156,26 @@ static enum MHD_Result send_state(struct panel *p, struct MHD_Connection *c)
     if (!json)
         return MHD_NO;
     pthread_mutex_lock(&p->lock);
-    len = panel_json(json, PANEL_JSON_MAX, p->now_ms, p->shot, p->nbricks);
+    len = panel_json(json, PANEL_JSON_MAX, p->now_ms, p->shot, p->nbricks, p->world.on);
     pthread_mutex_unlock(&p->lock);
     if (len == 0) {
         free(json);
-        return refuse(c, MHD_HTTP_INTERNAL_SERVER_ERROR, "state too large");
+        return panel_refuse(c, MHD_HTTP_INTERNAL_SERVER_ERROR, "state too large");
     }
-    return send_buffer(c, json, len, "application/json", "no-store");
+    return panel_send_buffer(c, json, len, "application/json", "no-store");
 }
 
-/* One page's event stream: a snapshot each time it changes (at most every EVENT_GAP_MS), comments in between. */
+/* One page's event stream: a snapshot each time it changes (at most every gap), comments in between. */
 struct stream {
     struct panel *p;
+    int world;                    /* the world's scene and poses (GET /world/events), else the bricks (GET /events) */
     int started;
     unsigned long version;        /* of the last snapshot sent */
+    unsigned long scene_version;  /* of the last scene sent (world) */
     struct timespec last;         /* when it was sent */
     size_t len, off;              /* of the event being sent */
-    char buf[PANEL_JSON_MAX + 64];
+    size_t cap;
+    char *buf;
 };
 
 static void add_ms(struct timespec *t, long ms)
@@ -199,6 +188,40 @@ static void add_ms(struct timespec *t, long ms)
     }
 }
 
+static int stream_behind(const struct stream *st)
+{
+    const struct panel *p = st->p;
+    if (st->world)
+        return p->world.version != st->version || p->world.scene_version != st->scene_version;
+    return p->version != st->version;
+}
+
+/* The snapshot as an event into st->buf, under the lock; its length, 0 when it cannot be made. */
+static size_t fill_event(struct stream *st)
+{
+    struct panel *p = st->p;
+    size_t n;
+    char *more;
+
+    if (!st->world) {
+        memcpy(st->buf, "data: ", 6);
+        n = panel_json(st->buf + 6, st->cap - 8, p->now_ms, p->shot, p->nbricks, p->world.on);
+        st->version = p->version;
+        if (n == 0)
+            return 0;
+        memcpy(st->buf + 6 + n, "\n\n", 2);
+        return n + 8;
+    }
+    while ((n = panel_world_event(p, &st->version, &st->scene_version, st->buf, st->cap)) > st->cap) {
+        more = realloc(st->buf, n);
+        if (!more)
+            return 0;
+        st->buf = more;
+        st->cap = n;
+    }
+    return n;
+}
+
 /* The next event into st->buf; -1 when the panel closes. */
 static int next_event(struct stream *st)
 {
@@ -208,35 +231,32 @@ static int next_event(struct stream *st)
 
     if (st->started) { /* keep the gap after the last snapshot */
         until = st->last;
-        add_ms(&until, EVENT_GAP_MS);
+        add_ms(&until, st->world ? WORLD_GAP_MS : EVENT_GAP_MS);
         while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &until, NULL) == EINTR)
             ;
     }
     clock_gettime(CLOCK_REALTIME, &until);
     add_ms(&until, EVENT_KEEPALIVE_S * 1000L);
     pthread_mutex_lock(&p->lock);
-    while (!p->closing && st->started && p->version == st->version)
+    while (!p->closing && st->started && !stream_behind(st))
         if (pthread_cond_timedwait(&p->changed, &p->lock, &until) == ETIMEDOUT)
             break;
     if (p->closing) {
         pthread_mutex_unlock(&p->lock);
         return -1;
     }
-    if (st->started && p->version == st->version) {
+    if (st->started && !stream_behind(st)) {
         pthread_mutex_unlock(&p->lock);
         strcpy(st->buf, ": nothing new\n\n");
         st->len = strlen(st->buf);
         st->off = 0;
         return 0;
     }
-    memcpy(st->buf, "data: ", 6);
-    n = panel_json(st->buf + 6, sizeof st->buf - 8, p->now_ms, p->shot, p->nbricks);
-    st->version = p->version;
+    n = fill_event(st);
     pthread_mutex_unlock(&p->lock);
     if (n == 0)
         return -1;
-    memcpy(st->buf + 6 + n, "\n\n", 2);
-    st->len = n + 8;
+    st->len = n;
     st->off = 0;
     st->started = 1;
     clock_gettime(CLOCK_MONOTONIC, &st->last);
@@ -257,7 +277,14 @@ static ssize_t stream_read(void *cls, uint64_t pos, char *out, size_t max)
     return (ssize_t)n;
 }
 
-static enum MHD_Result send_events(struct panel *p, struct MHD_Connection *c)
+static void stream_free(void *cls)
+{
+    struct stream *st = cls;
+    free(st->buf);
+    free(st);
+}
+
+enum MHD_Result panel_send_stream(struct panel *p, struct MHD_Connection *c, int world)
 {
     struct stream *st = calloc(1, sizeof *st);
     struct MHD_Response *r;
@@ -265,18 +292,25 @@ static enum MHD_Result send_events(struct panel *p, struct MHD_Connection *c)
     if (!st)
         return MHD_NO;
     st->p = p;
+    st->world = world;
+    st->cap = PANEL_JSON_MAX + 64;
+    st->buf = malloc(st->cap);
+    if (!st->buf) {
+        free(st);
+        return MHD_NO;
+    }
     strcpy(st->buf, "retry: 1000\n\n"); /* a page that loses the stream comes back after a second */
     st->len = strlen(st->buf);
-    r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 4096, stream_read, st, free);
+    r = MHD_create_response_from_callback(MHD_SIZE_UNKNOWN, 4096, stream_read, st, stream_free);
     if (!r)
-        free(st);
+        stream_free(st);
     return respond(c, MHD_HTTP_OK, r, "text/event-stream", "no-store");
 }
 
 /* The query must hold only the names given, each at most once. */
 struct query_check {
     const char *const *names;
-    int count[4];
+    int count[8];
     int bad;
 };
 
@@ -294,9 +328,16 @@ static enum MHD_Result check_arg(void *cls, enum MHD_ValueKind kind, const char 
     return MHD_YES;
 }
 
-static const char *arg(struct MHD_Connection *c, const char *name)
+const char *panel_arg(struct MHD_Connection *c, const char *name)
 {
     return MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, name);
+}
+
+int panel_query_only(struct MHD_Connection *c, const char *const *names)
+{
+    struct query_check q = { names, { 0 }, 0 };
+    MHD_get_connection_values(c, MHD_GET_ARGUMENT_KIND, check_arg, &q);
+    return q.bad;
 }
 
 /* POST /button, /sensor, /battery: checked, queued for the simulation thread, answered once applied. */
@@ -306,50 +347,49 @@ static enum MHD_Result post_input(struct panel *p, struct MHD_Connection *c, con
     static const char *const sensor_args[] = { "brick", "input", "raw", NULL };
     static const char *const battery_args[] = { "brick", "mv", NULL };
     static const char *const actions[] = { "up", "down" };
-    struct query_check q = { NULL, { 0 }, 0 };
+    const char *const *names;
     struct panel_input in;
     struct timespec until;
-    const char *brick = arg(c, "brick");
+    const char *brick = panel_arg(c, "brick"), *button = panel_arg(c, "button");
     unsigned long ticket;
     long v;
 
     memset(&in, 0, sizeof in);
     if (brick) {
         if (sim_parse_number(brick, 0, p->nbricks - 1, &v))
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "brick: no such brick");
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "brick: no such brick");
         in.brick = (int)v;
     }
     if (strcmp(url, "/button") == 0) {
-        q.names = button_args;
+        names = button_args;
         in.kind = EV_BUTTON;
-        if (!arg(c, "button") || (in.a = sim_word_index(arg(c, "button"), sim_button_names, SIM_BUTTONS)) < 0)
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "button: expected onoff, run, view or prgm");
-        if (!arg(c, "action") || (in.b = sim_word_index(arg(c, "action"), actions, 2)) < 0)
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "action: expected down or up");
+        if (!button || (in.a = sim_word_index(button, sim_button_names, SIM_BUTTONS)) < 0)
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "button: expected onoff, run, view or prgm");
+        if (!panel_arg(c, "action") || (in.b = sim_word_index(panel_arg(c, "action"), actions, 2)) < 0)
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "action: expected down or up");
     } else if (strcmp(url, "/sensor") == 0) {
-        q.names = sensor_args;
+        names = sensor_args;
         in.kind = EV_SENSOR;
-        if (sim_parse_number(arg(c, "input"), 1, 3, &v))
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "input: expected 1, 2 or 3");
+        if (sim_parse_number(panel_arg(c, "input"), 1, 3, &v))
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "input: expected 1, 2 or 3");
         in.a = (int)v - 1;
-        if (sim_parse_number(arg(c, "raw"), 0, 1023, &v))
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "raw: expected 0-1023");
+        if (sim_parse_number(panel_arg(c, "raw"), 0, 1023, &v))
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "raw: expected 0-1023");
         in.b = (int)v;
     } else {
-        q.names = battery_args;
+        names = battery_args;
         in.kind = EV_BATTERY;
-        if (sim_parse_number(arg(c, "mv"), 0, SIM_BATTERY_MAX_MV, &v))
-            return refuse(c, MHD_HTTP_BAD_REQUEST, "mv: expected millivolts 0-65535");
+        if (sim_parse_number(panel_arg(c, "mv"), 0, SIM_BATTERY_MAX_MV, &v))
+            return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "mv: expected millivolts 0-65535");
         in.a = (int)v;
     }
-    MHD_get_connection_values(c, MHD_GET_ARGUMENT_KIND, check_arg, &q);
-    if (q.bad)
-        return refuse(c, MHD_HTTP_BAD_REQUEST, "unknown, empty or repeated parameter");
+    if (panel_query_only(c, names))
+        return panel_refuse(c, MHD_HTTP_BAD_REQUEST, "unknown, empty or repeated parameter");
 
     pthread_mutex_lock(&p->lock);
     if (p->queued == PANEL_QUEUE || p->closing) {
         pthread_mutex_unlock(&p->lock);
-        return refuse(c, MHD_HTTP_SERVICE_UNAVAILABLE, "input queue full, try again");
+        return panel_refuse(c, MHD_HTTP_SERVICE_UNAVAILABLE, "input queue full, try again");
     }
     p->queue[p->queued++] = in;
     ticket = ++p->posted;
@@ -360,7 +400,7 @@ static enum MHD_Result post_input(struct panel *p, struct MHD_Connection *c, con
             break;
     v = (long)(p->applied - ticket) >= 0;
     pthread_mutex_unlock(&p->lock);
-    return send_text(c, v ? MHD_HTTP_NO_CONTENT : MHD_HTTP_ACCEPTED, "text/plain", "");
+    return panel_send_text(c, v ? MHD_HTTP_NO_CONTENT : MHD_HTTP_ACCEPTED, "text/plain", "");
 }
 
 /* Another site's page may not press the buttons: a browser names the page's origin on every POST. */
@@ -371,46 +411,127 @@ static int foreign_origin(struct MHD_Connection *c)
     return origin && (!host || strncmp(origin, "http://", 7) != 0 || strcmp(origin + 7, host) != 0);
 }
 
+/* A request's body, kept only for POST /world/floor; every other request has none. */
+struct body {
+    size_t len, cap;
+    int too_large;
+    unsigned char *data;
+};
+
+static int takes_body(const char *url, const char *method)
+{
+    return strcmp(url, "/world/floor") == 0 && strcmp(method, "POST") == 0;
+}
+
+/* The first call, with the headers: a body is refused before it is read unless the request takes one. */
+static int headers_seen; /* the context of a request without a body */
+
+static enum MHD_Result begin(struct MHD_Connection *c, const char *url, const char *method, void **req)
+{
+    const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Content-Length");
+    const char *chunked = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Transfer-Encoding");
+    struct body *b;
+    long n = 0;
+
+    *req = &headers_seen;
+    if (!takes_body(url, method)) {
+        if ((length && strcmp(length, "0") != 0) || chunked)
+            return panel_refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, "no request body expected: parameters go in the query");
+        return MHD_YES;
+    }
+    if (length && sim_parse_number(length, 0, PANEL_FLOOR_MAX, &n))
+        return panel_refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, "the floor picture may have at most 8 MiB");
+    b = calloc(1, sizeof *b);
+    if (!b)
+        return MHD_NO;
+    b->cap = length && n ? (size_t)n : 65536; /* sent in chunks: grows as they come */
+    b->data = malloc(b->cap);
+    if (!b->data) {
+        free(b);
+        return MHD_NO;
+    }
+    *req = b;
+    return MHD_YES;
+}
+
+/* Takes what came of a body; a body sent in chunks is cut off at the limit and refused once it has all come. */
+static void take_body(void *req, const char *data, size_t n)
+{
+    struct body *b = req;
+    unsigned char *more;
+
+    if (b->too_large || n > PANEL_FLOOR_MAX - b->len) {
+        b->too_large = 1;
+        return;
+    }
+    if (n > b->cap - b->len) {
+        b->cap = b->len + n > PANEL_FLOOR_MAX / 2 ? PANEL_FLOOR_MAX : 2 * (b->len + n);
+        more = realloc(b->data, b->cap);
+        if (!more) {
+            b->too_large = 1;
+            return;
+        }
+        b->data = more;
+    }
+    memcpy(b->data + b->len, data, n);
+    b->len += n;
+}
+
+/* The end of a request, answered or not: its body goes. */
+static void finished(void *cls, struct MHD_Connection *c, void **req, enum MHD_RequestTerminationCode why)
+{
+    (void)cls;
+    (void)c;
+    (void)why;
+    if (*req && *req != &headers_seen) {
+        free(((struct body *)*req)->data);
+        free(*req);
+    }
+    *req = NULL;
+}
+
 static enum MHD_Result route(void *cls, struct MHD_Connection *c, const char *url, const char *method,
                              const char *version, const char *upload_data, size_t *upload_size, void **req)
 {
-    static int headers_seen;
     struct panel *p = cls;
     int get = strcmp(method, "GET") == 0 || strcmp(method, "HEAD") == 0, post = strcmp(method, "POST") == 0;
-    const char *length = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Content-Length");
-    const char *chunked = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Transfer-Encoding");
+    struct body *b;
     size_t i;
 
     (void)version;
-    (void)upload_data;
-    if (*req == NULL) {
-        *req = &headers_seen;
-        /* Nothing here takes a body: refuse it before it is read. */
-        if ((length && strcmp(length, "0") != 0) || chunked)
-            return refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, "no request body expected: parameters go in the query");
-        return MHD_YES;
-    }
+    if (*req == NULL)
+        return begin(c, url, method, req);
+    b = takes_body(url, method) ? *req : NULL;
     if (*upload_size) {
+        if (b)
+            take_body(b, upload_data, *upload_size);
         *upload_size = 0;
         return MHD_YES;
     }
     for (i = 0; i < sizeof page_files / sizeof page_files[0]; i++)
         if (strcmp(url, page_files[i].path) == 0)
             return get ? send_file(c, page_files[i].file, page_files[i].type)
-                       : refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET here");
+                       : panel_refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET here");
     if (strcmp(url, "/state") == 0 || strcmp(url, "/events") == 0) {
         if (!get)
-            return refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET here");
-        return url[1] == 's' ? send_state(p, c) : send_events(p, c);
+            return panel_refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only GET here");
+        return url[1] == 's' ? send_state(p, c) : panel_send_stream(p, c, 0);
     }
     if (strcmp(url, "/button") == 0 || strcmp(url, "/sensor") == 0 || strcmp(url, "/battery") == 0) {
         if (!post)
-            return refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only POST here");
+            return panel_refuse(c, MHD_HTTP_METHOD_NOT_ALLOWED, "only POST here");
         if (foreign_origin(c))
-            return refuse(c, MHD_HTTP_FORBIDDEN, "inputs only from the panel's own page");
+            return panel_refuse(c, MHD_HTTP_FORBIDDEN, "inputs only from the panel's own page");
         return post_input(p, c, url);
     }
-    return refuse(c, MHD_HTTP_NOT_FOUND, "no such page: try / or /state");
+    if (strcmp(url, "/world") == 0 || strncmp(url, "/world/", 7) == 0) {
+        if (post && foreign_origin(c))
+            return panel_refuse(c, MHD_HTTP_FORBIDDEN, "inputs only from the panel's own page");
+        if (b && b->too_large)
+            return panel_refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, "the floor picture may have at most 8 MiB");
+        return panel_world_route(p, c, url, get, post, b ? b->data : NULL, b ? b->len : 0);
+    }
+    return panel_refuse(c, MHD_HTTP_NOT_FOUND, "no such page: try / or /state");
 }
 
 struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, char *err, size_t errlen)
@@ -444,6 +565,7 @@ struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, c
     p->nbricks = s->nbricks;
     for (i = 0; i < s->nbricks; i++)
         panel_snapshot(s->brick[i], &p->shot[i]);
+    panel_world_start(p, s);
     /* The server's threads leave the stop signals to the simulation thread. */
     sigemptyset(&block);
     sigaddset(&block, SIGINT);
@@ -452,10 +574,12 @@ struct panel *panel_start(struct sim *s, const char *bind_addr, unsigned port, c
     pthread_sigmask(SIG_BLOCK, &block, &old);
     p->daemon = MHD_start_daemon(flags, (uint16_t)port, NULL, NULL, route, p, MHD_OPTION_SOCK_ADDR, &addr,
                                  MHD_OPTION_CONNECTION_LIMIT, (unsigned)PANEL_CONNECTIONS,
-                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S), MHD_OPTION_END);
+                                 MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)(3 * EVENT_KEEPALIVE_S),
+                                 MHD_OPTION_NOTIFY_COMPLETED, finished, NULL, MHD_OPTION_END);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (!p->daemon) {
         snprintf(err, errlen, "cannot listen on %s port %u (in use?)", bind_addr, port);
+        panel_world_stop(p);
         pthread_cond_destroy(&p->changed);
         pthread_mutex_destroy(&p->lock);
         free(p);
@@ -474,6 +598,7 @@ void panel_stop(struct panel *p)
     pthread_cond_broadcast(&p->changed);
     pthread_mutex_unlock(&p->lock);
     MHD_stop_daemon(p->daemon);
+    panel_world_stop(p);
     pthread_cond_destroy(&p->changed);
     pthread_mutex_destroy(&p->lock);
     free(p);

@@ -99,12 +99,13 @@ static void brick_json(char *buf, size_t size, size_t *len, const struct panel_b
         p->range == 1 ? "far" : "near");
 }
 
-size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n)
+size_t panel_json(char *buf, size_t size, unsigned long long t_ms, const struct panel_brick *bricks, int n,
+                  int world)
 {
     size_t len = 0;
     int i;
 
-    put(buf, size, &len, "{\"t\":%llu,\"bricks\":[", t_ms);
+    put(buf, size, &len, "{\"t\":%llu,\"world\":%s,\"bricks\":[", t_ms, bool_word((unsigned)world));
     for (i = 0; i < n; i++) {
         if (i)
             put(buf, size, &len, ",");

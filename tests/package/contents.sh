@@ -20,7 +20,8 @@ done
 "$DPKG_DEB" -c "$DEB" | awk '{ print $1, $6 }' >"$WORK/list"
 for f in ./usr/bin/rcxsim ./usr/share/openrcx/openrcx.srec ./usr/share/openrcx/openrcx.lgo \
     ./usr/share/openrcx/panel/index.html ./usr/share/openrcx/panel/panel.js ./usr/share/openrcx/panel/panel.css \
-    ./usr/share/openrcx/panel/brick.svg ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
+    ./usr/share/openrcx/panel/brick.svg ./usr/share/openrcx/panel/world.js \
+    ./usr/share/man/man1/rcxsim.1.gz ./usr/share/man/man7/openrcx.7.gz \
     ./usr/share/doc/openrcx/README.md ./usr/share/doc/openrcx/README.Debian ./usr/share/doc/openrcx/copyright \
     ./usr/share/doc/openrcx/changelog.gz ./usr/share/doc/openrcx/world.md \
     ./usr/share/openrcx/scenes/testpad.json ./usr/share/openrcx/scenes/testpad.png \

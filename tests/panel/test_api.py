@@ -42,9 +42,9 @@ def raw_exchange(sim, data, timeout=5):
         s.close()
 
 
-def open_stream(sim):
+def open_stream(sim, path="/events"):
     s = socket.create_connection((sim.host, sim.port), timeout=5)
-    s.sendall(b"GET /events HTTP/1.1\r\nHost: 127.0.0.1\r\nAccept: text/event-stream\r\n\r\n")
+    s.sendall(b"GET %s HTTP/1.1\r\nHost: 127.0.0.1\r\nAccept: text/event-stream\r\n\r\n" % path.encode())
     return s
 
 
@@ -75,6 +75,7 @@ def _is_chunk_size(part):
 
 def test_state_and_inputs(sim):
     wait_for("the sweep of --load to end", lambda: brick0(sim)["sound"] == 0)
+    check(sim.state()["world"] is False, "no world without --world")
     b = brick0(sim)
     for key in ("motors", "lcd", "num", "prog", "sound", "sensors", "buttons", "battery", "slot", "tasks", "ir"):
         check(key in b, "state lacks %s" % key)

@@ -43,6 +43,7 @@ return {
     a_row: rowA.className, a_text: rowA.innerText.replace(/\\s+/g, ' ').trim(),
     rotor: card.querySelector('[data-rotor="A"]').getAttribute('class'),
     tasks: card.querySelector('.tasks').textContent,
+    world_hidden: document.getElementById('world').hidden,
     link: document.getElementById('link').textContent,
 };
 """
@@ -93,6 +94,7 @@ def main():
             check(not page["a_rev"] and page["rotor"] == "rotor fwd", "A turns forward: %r" % page)
             check("forward" in page["a_text"] and "power 7" in page["a_text"], "output table: %r" % page)
             check(page["tasks"] == "task 0", "task 0 runs, and the page says so: %r" % page)
+            check(page["world_hidden"], "no world without --world")
             time.sleep(0.3)  # a turn of the wheel in the picture
             driver.save_screenshot(os.path.join(shots, "panel-running.png"))
 
