@@ -9,9 +9,15 @@
  *
  * Work goes only where events are: each input counts the events watching it and sensor[0] those watching a timer,
  * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
- * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only. An event on an input
- * is still looked at after every sample, steady or not: its thresholds can be moved by SetSourceValue, which does
- * not tell the engine, and a calibration samples every millisecond.
+ * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only.
+ *
+ * And only when something moved: the events of an input are evaluated after a sample that changed its value or its
+ * boolean (vm/sensors.c), or when they asked for the next sample whatever it gives (rcx_sensor.pending): SetEvent
+ * (the first classification), a threshold or the hysteresis moved by SetSourceValue (events_look_again()), a
+ * calibration (a sample every millisecond, 8 of them, then the first classification), a value cleared or a mode
+ * changed. That is exact: with the value, the boolean and the thresholds as at the last evaluation, an evaluation
+ * changes nothing (the hysteresis is never negative: a range entered holds its value), so the events are as if
+ * looked at after every sample. Click timing needs no clock: a click's duration is judged when its state changes.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -92,13 +98,23 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
         row = virtual_row[n - RCX_SENSORS];
     } else {
         s += n;
-        s->number = n;
+        s->key = KEY(n);
         s->watched = (u8)(s->watched + d);
         row = (u8)(s->mode >> 5);
         e->flags = s->boolean; /* F_BOOL */
     }
     e->lower = events_default[row][0];
     e->upper = events_default[row][1];
+}
+
+/* Every input an event watches: the one that matters is among them, and a loop costs less than finding it. */
+RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
+void events_look_again(struct rcx *b)
+{
+    b->sensor[0].pending = b->sensor[0].watched;
+    b->sensor[1].pending = b->sensor[1].watched;
+    b->sensor[2].pending = b->sensor[2].watched;
+    b->sensors_rest = 0;
 }
 
 /* Spec p. 25: tasks monitoring events are not told. */
@@ -120,7 +136,6 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
     if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
         return;
     e = &b->event[ev];
-    b->sensors_rest = 0; /* an input may gain a watcher: its samples must be fed (vm/sensors.h) */
     if (e->source)
         watch(b, e, 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
@@ -131,6 +146,7 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
         return;
     e->source = KEY(SOURCE);
     watch(b, e, 1);
+    events_look_again(b); /* its first classification */
 }
 #undef SOURCE
 #undef TYPE
@@ -151,6 +167,7 @@ void events_calibrate(struct rcx *b, const u8 *ins)
     e->u.cal.raw_sum = 0;
     e->u.cal.rem = 0;
     memcpy(e->u.cal.pct, ins + 2, sizeof e->u.cal.pct);
+    events_look_again(b); /* the samples to come */
 }
 
 /* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply (the low byte's product first: gcc then
@@ -186,13 +203,14 @@ static s16 add_sat(s16 a, s16 b)
  * the same A/D scale. */
 #define RAW_COUNT_ONE 0x2000
 enum { PCT_UPPER, PCT_LOWER, PCT_HYST }; /* struct rcx_event_cal.pct: CalibrateEvent's operands in order */
-static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
+static void calibrate_sample(struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
     u8 m;
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
+        in->pending = 1; /* the next sample: for the calibration, or after the last for the first classification */
         c->rem = (u8)(c->rem + (avg & 7));
         c->sum8 = (s16)(c->sum8 + (avg >> 3));
         c->raw_sum = (u16)(c->raw_sum + in->raw + RAW_COUNT_ONE);
@@ -277,7 +295,7 @@ static u8 classify(const struct rcx_event *e, s16 value)
 #define ANY EVENTS_ANY /* above every KEY */
 static u16 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
-    const struct rcx_sensor *in = NULL;
+    struct rcx_sensor *in = NULL;
     u8 s = (u8)(e->source - KEY(0)), to, from, bo;
     u16 happened = 0;
     s16 value;
@@ -352,12 +370,11 @@ void events_raise(struct rcx *b, u16 mask)
     while (++t < b->task + RCX_TASKS);
 }
 
-void events_input(struct rcx *b, u8 n)
+void events_sensor(struct rcx *b, struct rcx_sensor *s)
 {
-    const struct rcx_sensor *s;
+    u8 left = s->watched;
 
-    if (n < RCX_SENSORS) {
-        s = b->sensor + n;
-        events_evaluate(b, s->watched, KEY(n));
-    }
+    s->pending = 0; /* unless a calibration wants the next sample (calibrate_sample()) */
+    if (left) /* (else its key may be 0 still, the key of the cleared events) */
+        events_evaluate(b, left, s->key);
 }

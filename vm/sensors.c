@@ -4,7 +4,9 @@
  *
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
- * (rcx_sensor.quiet), telling only the events that watch the input, if any.
+ * (rcx_sensor.quiet). The events that watch an input are told only when its value or boolean changed, or when they
+ * asked for the next sample anyway (rcx_sensor.pending: vm/events.c): an event whose input did not move costs
+ * nothing, and such an input is at rest (sensors_at_rest()) like one no event watches.
  */
 #include "rcx.h"
 #include "hal.h"
@@ -92,7 +94,7 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     s = &b->sensor[n];
     s->value = 0;
     s->quiet = SENSOR_MOVING;
-    b->sensors_rest = 0;
+    events_look_again(b); /* they saw the value before: the next sample is theirs, whatever it gives */
     return s;
 }
 
@@ -162,19 +164,20 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
- * mode the steps are counted into the value. */
-static void turn(struct rcx_sensor *s, u16 raw)
+/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it). Returns
+ * the step it made, which angle mode counts into the value: 1 up, -1 down, 0 none. */
+static s8 turn(struct rcx_sensor *s, u16 raw)
 {
     u8 phase = rotation_phase(raw), was = s->phase, d = (u8)((phase - was) & 3);
 
     if (phase == PHASE_NONE)
-        return;
+        return 0;
     s->phase = phase;
     /* The change of phase (mod 4) since the last valid sample: 1 a step up, 3 a step down; a jump of two phases cannot
      * tell the direction and counts nothing. */
-    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE && d & 1)
-        s->value = (s16)(s->value + 2 - d);
+    if (was != PHASE_NONE && d & 1)
+        return (s8)(2 - d);
+    return 0;
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
@@ -184,7 +187,8 @@ RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by h
  * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
 static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
-    u8 was, mode;
+    u8 was, edge, mode;
+    s8 step;
     s16 v;
     u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
@@ -194,9 +198,10 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     s->quiet = raw | SENSOR_STEADY;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
-    turn(s, raw);
+    step = turn(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
+    edge = (u8)(s->boolean ^ was); /* booleans are 0 or 1 */
     v = s->value;
     mode = (u8)(s->mode & ~SENSOR_SLOPE);
     if (mode == SENSOR_MODE_RAW)
@@ -204,15 +209,20 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     else if (mode == SENSOR_MODE_BOOL)
         v = s->boolean;
     else if (mode == SENSOR_MODE_TRANSITIONS)
-        v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
+        v = (s16)(v + edge);
     else if (mode == SENSOR_MODE_PERIODS)
-        v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
-    else if (mode != SENSOR_MODE_ANGLE) /* (counted by turn()) */
+        v = (s16)(v + (edge & was)); /* a period ends at each 1 -> 0 */
+    else if (mode == SENSOR_MODE_ANGLE)
+        v = (s16)(v + step);
+    else
         v = converted(mode, raw);
+    /* The events are told of a new value or boolean (and of nothing else, unless they asked: vm/events.c). */
+    if (v != s->value)
+        edge = 1;
     s->value = v;
     s->raw = raw;
-    if (s->watched)
-        events_input(b, s->number);
+    if ((edge || s->pending) && s->watched)
+        events_sensor(b, s);
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
@@ -228,8 +238,8 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
     s = &b->sensor[n];
     if (raw != s->quiet)
         sample(b, s, raw);
-    else if (s->watched)
-        events_input(b, s->number);
+    else if (s->pending)
+        events_sensor(b, s);
 }
 
 u8 sensors_at_rest(struct rcx *b)
@@ -238,7 +248,7 @@ u8 sensors_at_rest(struct rcx *b)
     u8 n = RCX_SENSORS, rest = 0;
 
     do {
-        if (s->quiet == SENSOR_MOVING || s->watched)
+        if (s->quiet == SENSOR_MOVING || s->pending)
             goto moving;
         s++;
     } while (--n);

@@ -48,17 +48,18 @@ struct rcx_sensor {
     u8 boolean;     /* source 13 */
     u8 phase;       /* rotation sensor phase 0-3 of the last valid sample */
     u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
-    u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
+    u8 key;         /* ... the KEY of the input in vm/events.c (set by it once one does) ... */
     u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
+    u8 pending;     /* the events watching it must look at the next sample, changed or not (vm/events.c) */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
 struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: value from 0; as sensor_clear */
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
-/* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event's watch changes) when a sample of every
- * input equal to its last one would change nothing: all steady (rcx_sensor.quiet), none watched by an event. A
- * port that sees its inputs unchanged may then skip sensor_sample() for them. */
+/* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event changes) when a sample of every input
+ * equal to its last one would change nothing: all steady (rcx_sensor.quiet), no event waiting for a sample
+ * (rcx_sensor.pending). A port that sees its inputs unchanged may then skip sensor_sample() for them. */
 u8 sensors_at_rest(struct rcx *b);
 
 #endif

@@ -117,7 +117,7 @@ static int set_up(unsigned which)
         m.ad_input = moving;
         moving_from = m.tick_at + STEP / 2;
         moving_until = ~0ull;
-        for (i = 0; i < 16; i++)
+        for (i = 0; i < (getenv("H8EVENTS_MOVING") ? (unsigned)atoi(getenv("H8EVENTS_MOVING")) : 16u); i++)
             if (set_event((uint8_t)i, moving_events[i][0], moving_events[i][1]))
                 return -1;
         /* The light's range flips with the noise: 50-53 percent around thresholds 51 and 52. */
@@ -133,11 +133,13 @@ static int set_up(unsigned which)
 /* Self states per function (H8EVENTS_PROFILE). */
 #define FUNCS 64
 static struct { const char *name; unsigned long long states; } prof[FUNCS];
+static unsigned long long pc_states[65536];
 static void profile(struct h8 *sim, uint16_t pc, unsigned states)
 {
     const char *f = h8_func_at(pc);
     int i;
     (void)sim;
+    pc_states[pc] += states;
     for (i = 0; i < FUNCS && prof[i].name && prof[i].name != f; i++)
         ;
     if (i < FUNCS) {
@@ -161,6 +163,11 @@ static void dump_profile(void)
     for (i = 0; i < 12 && prof[i].name; i++)
         printf("      %-24s %7.1f states/ms\n", prof[i].name, (double)prof[i].states / 1000);
     memset(prof, 0, sizeof prof);
+    if (getenv("H8EVENTS_PCS"))                         /* states per instruction of one function */
+        for (i = 0; i < 65536; i++)
+            if (pc_states[i] && !strcmp(h8_func_at((uint16_t)i), getenv("H8EVENTS_PCS")))
+                printf("        %04x %8.1f\n", i, (double)pc_states[i] / 1000);
+    memset(pc_states, 0, sizeof pc_states);
 }
 
 struct figures { double idle, rate, ping_ms; int steps, counted; };
