@@ -98,7 +98,7 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
         row = virtual_row[n - RCX_SENSORS];
     } else {
         s += n;
-        s->key = KEY(n);
+        s->key = e->source; /* KEY(n) */
         s->watched = (u8)(s->watched + d);
         row = (u8)(s->mode >> 5);
         e->flags = s->boolean; /* F_BOOL */

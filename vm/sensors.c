@@ -164,20 +164,19 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it). Returns
- * the step it made, which angle mode counts into the value: 1 up, -1 down, 0 none. */
-static s8 turn(struct rcx_sensor *s, u16 raw)
+/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
+ * mode the steps are counted into the value. */
+static void turn(struct rcx_sensor *s, u16 raw)
 {
     u8 phase = rotation_phase(raw), was = s->phase, d = (u8)((phase - was) & 3);
 
     if (phase == PHASE_NONE)
-        return 0;
+        return;
     s->phase = phase;
     /* The change of phase (mod 4) since the last valid sample: 1 a step up, 3 a step down; a jump of two phases cannot
      * tell the direction and counts nothing. */
-    if (was != PHASE_NONE && d & 1)
-        return (s8)(2 - d);
-    return 0;
+    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE && d & 1)
+        s->value = (s16)(s->value + 2 - d);
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
@@ -187,8 +186,7 @@ RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by h
  * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
 static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
-    u8 was, edge, mode;
-    s8 step;
+    u8 was, mode;
     s16 v;
     u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
@@ -198,10 +196,9 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     s->quiet = raw | SENSOR_STEADY;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
-    step = turn(s, raw);
+    turn(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
-    edge = (u8)(s->boolean ^ was); /* booleans are 0 or 1 */
     v = s->value;
     mode = (u8)(s->mode & ~SENSOR_SLOPE);
     if (mode == SENSOR_MODE_RAW)
@@ -209,19 +206,14 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     else if (mode == SENSOR_MODE_BOOL)
         v = s->boolean;
     else if (mode == SENSOR_MODE_TRANSITIONS)
-        v = (s16)(v + edge);
+        v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
     else if (mode == SENSOR_MODE_PERIODS)
-        v = (s16)(v + (edge & was)); /* a period ends at each 1 -> 0 */
-    else if (mode == SENSOR_MODE_ANGLE)
-        v = (s16)(v + step);
-    else
+        v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
+    else if (mode != SENSOR_MODE_ANGLE) /* (counted by turn()) */
         v = converted(mode, raw);
-    /* The events are told of a new value or boolean (and of nothing else, unless they asked: vm/events.c). */
-    if (v != s->value)
-        edge = 1;
     s->value = v;
     s->raw = raw;
-    if ((edge || s->pending) && s->watched)
+    if (s->watched) /* (a new raw sample may change the value, the boolean, a calibration) */
         events_sensor(b, s);
 }
 
