@@ -9,10 +9,12 @@
  *   - 16 events on 3 inputs that change every millisecond: a rotation sensor turning at 1 000 steps/s (its count
  *     checked afterwards: no step lost), a light sensor in percent mode with noise on every sample, and a light
  *     sensor in raw mode with slope 10 (change rate) on a triangle wave.
- * With --check it exits non-zero when a figure misses the issue's floor (or the brick stops answering).
- * H8EVENTS_PROFILE=1 prints where each idle millisecond's states go.
+ * With --check it exits non-zero when a figure misses the issue's floor (or the brick stops answering); --still
+ * measures and checks the cases with still inputs only (the test events.h8_still_inputs).
+ * H8EVENTS_PROFILE=1 prints where each idle millisecond's states go (H8EVENTS_PCS=function: its instructions too);
+ * H8EVENTS_MOVING=n sets up only the first n events of the moving case.
  *
- * Usage: h8events <firmware image (COFF; .srec beside it)> <h8300 nm> [--check]
+ * Usage: h8events <firmware image (COFF; .srec beside it)> <h8300 nm> [--check | --still]
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -228,18 +230,19 @@ static int measure(unsigned which, struct figures *f)
 
 int main(int argc, char **argv)
 {
-    int check = argc == 4 && !strcmp(argv[3], "--check"), bad = 0;
+    int still = argc == 4 && !strcmp(argv[3], "--still"), check = still || (argc == 4 && !strcmp(argv[3], "--check"));
+    int bad = 0;
     unsigned i;
 
     if (argc != 3 && !check) {
-        fprintf(stderr, "usage: %s <firmware image> <h8300 nm> [--check]\n", argv[0]);
+        fprintf(stderr, "usage: %s <firmware image> <h8300 nm> [--check | --still]\n", argv[0]);
         return 2;
     }
     image = argv[1];
     nm = argv[2];
     printf("events on the whole image in the simulated brick (h8machine.h): idle CPU share (no task) and a lone\n"
            "x++ task's byte codes/s, against the floors of issue 21\n");
-    for (i = 0; i < CASES; i++) {
+    for (i = 0; i < (still ? (unsigned)SIXTEEN_MOVING : (unsigned)CASES); i++) {
         struct figures f;
         if (measure(i, &f)) {
             printf("  %-28s the brick stopped answering (%s)\n", case_name[i], m.h.error[0] ? m.h.error : "no reply");
