@@ -83,7 +83,12 @@ static s16 celsius(u16 raw)
 /* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. For a 10-bit raw that
  * is the high byte of raw * 4: two additions, where gcc shifts right in a six-step loop. */
 static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
-#define rotation_phase(raw) phase_of[(u8)((u16)((raw) << 2) >> 8)]
+static inline u8 rotation_phase(u16 raw)
+{
+    raw = (u16)(raw << 2);
+    __asm__("" : "+r"(raw)); /* no code: keeps gcc from folding the two steps into raw >> 6, a six-step loop */
+    return phase_of[(u8)(raw >> 8)];
+}
 
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
 {
