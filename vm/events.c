@@ -98,7 +98,7 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
         row = virtual_row[n - RCX_SENSORS];
     } else {
         s += n;
-        s->key = e->source; /* KEY(n) */
+        s->number = n;
         s->watched = (u8)(s->watched + d);
         row = (u8)(s->mode >> 5);
         e->flags = s->boolean; /* F_BOOL */
@@ -107,13 +107,13 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
     e->upper = events_default[row][1];
 }
 
-/* Every input an event watches: the one that matters is among them, and a loop costs less than finding it. */
+/* Every input: the one that matters is among them, and that costs less than finding it. */
 RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
 void events_look_again(struct rcx *b)
 {
-    b->sensor[0].pending = b->sensor[0].watched;
-    b->sensor[1].pending = b->sensor[1].watched;
-    b->sensor[2].pending = b->sensor[2].watched;
+    b->sensor[0].pending = 1; /* (an input no event watches has it cleared by its next sample) */
+    b->sensor[1].pending = 1;
+    b->sensor[2].pending = 1;
     b->sensors_rest = 0;
 }
 
@@ -375,6 +375,6 @@ void events_sensor(struct rcx *b, struct rcx_sensor *s)
     u8 left = s->watched;
 
     s->pending = 0; /* unless a calibration wants the next sample (calibrate_sample()) */
-    if (left) /* (else its key may be 0 still, the key of the cleared events) */
-        events_evaluate(b, left, s->key);
+    if (left) /* (else its number may not be set yet) */
+        events_evaluate(b, left, KEY(s->number));
 }

@@ -48,7 +48,7 @@ struct rcx_sensor {
     u8 boolean;     /* source 13 */
     u8 phase;       /* rotation sensor phase 0-3 of the last valid sample */
     u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
-    u8 key;         /* ... the KEY of the input in vm/events.c (set by it once one does) ... */
+    u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
     u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
     u8 pending;     /* the events watching it must look at the next sample, changed or not (vm/events.c) */
 };
