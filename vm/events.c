@@ -11,13 +11,16 @@
  * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
  * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only.
  *
- * And only when something moved: the events of an input are evaluated after a sample that changed its value or its
- * boolean (vm/sensors.c), or when they asked for the next sample whatever it gives (rcx_sensor.pending): SetEvent
- * (the first classification), a threshold or the hysteresis moved by SetSourceValue (events_look_again()), a
- * calibration (a sample every millisecond, 8 of them, then the first classification), a value cleared or a mode
- * changed. That is exact: with the value, the boolean and the thresholds as at the last evaluation, an evaluation
- * changes nothing (the hysteresis is never negative: a range entered holds its value), so the events are as if
- * looked at after every sample. Click timing needs no clock: a click's duration is judged when its state changes.
+ * And only when something may have moved: the events of an input are evaluated after the samples that the sensor
+ * engine works out in full (vm/sensors.c: a raw value that moved, or not yet the same SENSOR_DT_MS times), not after
+ * the steady ones, which change nothing. An input whose events want its next sample whatever it gives is marked
+ * moving (rcx_sensor.quiet), so that it is worked out in full: SetEvent (the first classification), CalibrateEvent
+ * and each calibration sample (8 of them, a millisecond apart, then the first classification), any SetSourceValue
+ * (a threshold or the hysteresis may have moved: events_look_again()), a value cleared or a mode or type changed
+ * (sensor_clear()). That is exact: with the value, the boolean and the thresholds as at the last evaluation, an
+ * evaluation changes nothing (the hysteresis is never negative: a range entered holds its value), so the events are
+ * as if looked at after every sample. Click timing needs no clock: a click's duration is judged when the state
+ * changes. A still input is then at rest (sensors_at_rest()) whether events watch it or not.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -107,13 +110,14 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
     e->upper = events_default[row][1];
 }
 
-/* Every input: the one that matters is among them, and that costs less than finding it. */
+/* Every input is marked moving: the one that matters is among them, and that costs less than finding it (a sample
+ * worked out in full again gives what it gave). */
 RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
 void events_look_again(struct rcx *b)
 {
-    b->sensor[0].pending = 1; /* (an input no event watches has it cleared by its next sample) */
-    b->sensor[1].pending = 1;
-    b->sensor[2].pending = 1;
+    b->sensor[0].quiet = SENSOR_MOVING;
+    b->sensor[1].quiet = SENSOR_MOVING;
+    b->sensor[2].quiet = SENSOR_MOVING;
     b->sensors_rest = 0;
 }
 
@@ -210,7 +214,7 @@ static void calibrate_sample(struct rcx_sensor *in, struct rcx_event *e, s16 avg
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
-        in->pending = 1; /* the next sample: for the calibration, or after the last for the first classification */
+        in->quiet = SENSOR_MOVING; /* the next sample: the calibration's, or after the last the first classification */
         c->rem = (u8)(c->rem + (avg & 7));
         c->sum8 = (s16)(c->sum8 + (avg >> 3));
         c->raw_sum = (u16)(c->raw_sum + in->raw + RAW_COUNT_ONE);
@@ -370,11 +374,12 @@ void events_raise(struct rcx *b, u16 mask)
     while (++t < b->task + RCX_TASKS);
 }
 
-void events_sensor(struct rcx *b, struct rcx_sensor *s)
+void events_input(struct rcx *b, u8 n)
 {
-    u8 left = s->watched;
+    const struct rcx_sensor *s;
 
-    s->pending = 0; /* unless a calibration wants the next sample (calibrate_sample()) */
-    if (left) /* (else its number may not be set yet) */
-        events_evaluate(b, left, KEY(s->number));
+    if (n < RCX_SENSORS) {
+        s = b->sensor + n;
+        events_evaluate(b, s->watched, KEY(n));
+    }
 }

@@ -12,7 +12,6 @@
 
 struct rcx;
 struct rcx_task;
-struct rcx_sensor;
 
 /* Event sensors as SetEvent numbers them (spec pp. 70, 100). */
 #define RCX_EVENT_SRC_TIMER 3     /* 3-6: timers 0-3 */
@@ -101,13 +100,10 @@ static inline void events_counter_changed(struct rcx *b, u8 n)
 }
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 static inline void events_message_changed(struct rcx *b) { events_evaluate(b, 0, EVENTS_KEY(RCX_EVENT_SRC_MESSAGE)); }
-/* Input s's processed value or boolean changed, or its events asked for the next sample (rcx_sensor.pending, which
- * this sets again if a calibration still wants one). events_input() is the same for input n, any number (tests). */
-void events_sensor(struct rcx *b, struct rcx_sensor *s);
-#define events_input(b, n) ((u8)(n) < RCX_SENSORS ? events_sensor(b, &(b)->sensor[(u8)(n)]) : (void)0)
-/* The events of every input must look at its next sample even if the input does not move: an event was set or
- * calibrated, a threshold or the hysteresis moved (SetSourceValue), an input's value cleared or its mode or type
- * changed. (The timers, the message and the counters are looked at every 10 ms anyway.) */
+void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean may have changed */
+/* The events of every input must look at its next sample even if the input does not move (vm/events.c): an event was
+ * set or calibrated, a threshold or the hysteresis may have moved (SetSourceValue). (The timers, the message and the
+ * counters are looked at every 10 ms anyway.) */
 void events_look_again(struct rcx *b);
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
  * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click

@@ -4,9 +4,9 @@
  *
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
- * (rcx_sensor.quiet). The events that watch an input are told only when its value or boolean changed, or when they
- * asked for the next sample anyway (rcx_sensor.pending: vm/events.c): an event whose input did not move costs
- * nothing, and such an input is at rest (sensors_at_rest()) like one no event watches.
+ * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input: an event whose
+ * input did not move costs nothing, and such an input is at rest (sensors_at_rest()) like one no event watches. The
+ * event engine marks an input moving when its events want the next sample whatever it gives (vm/events.c).
  */
 #include "rcx.h"
 #include "hal.h"
@@ -99,7 +99,7 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     s = &b->sensor[n];
     s->value = 0;
     s->quiet = SENSOR_MOVING;
-    events_look_again(b); /* they saw the value before: the next sample is theirs, whatever it gives */
+    b->sensors_rest = 0; /* (the events saw the value before: the next sample, moving, is theirs) */
     return s;
 }
 
@@ -218,8 +218,8 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;
-    if (s->watched) /* (a new raw sample may change the value, the boolean, a calibration) */
-        events_sensor(b, s);
+    if (s->watched)
+        events_input(b, s->number);
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
@@ -235,8 +235,6 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
     s = &b->sensor[n];
     if (raw != s->quiet)
         sample(b, s, raw);
-    else if (s->pending)
-        events_sensor(b, s);
 }
 
 u8 sensors_at_rest(struct rcx *b)
@@ -245,7 +243,7 @@ u8 sensors_at_rest(struct rcx *b)
     u8 n = RCX_SENSORS, rest = 0;
 
     do {
-        if (s->quiet == SENSOR_MOVING || s->pending)
+        if (s->quiet == SENSOR_MOVING)
             goto moving;
         s++;
     } while (--n);

@@ -50,7 +50,6 @@ struct rcx_sensor {
     u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
     u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
     u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
-    u8 pending;     /* the events watching it must look at the next sample, changed or not (vm/events.c) */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
@@ -58,8 +57,8 @@ struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMo
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
 /* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event changes) when a sample of every input
- * equal to its last one would change nothing: all steady (rcx_sensor.quiet), no event waiting for a sample
- * (rcx_sensor.pending). A port that sees its inputs unchanged may then skip sensor_sample() for them. */
+ * equal to its last one would change nothing: all steady (rcx_sensor.quiet; the event engine marks an input moving
+ * when its events want a sample). A port that sees its inputs unchanged may then skip sensor_sample() for them. */
 u8 sensors_at_rest(struct rcx *b);
 
 #endif
