@@ -237,18 +237,13 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
         sample(b, s, raw);
 }
 
+RCX_STATIC_ASSERT(moving_is_0, SENSOR_MOVING == 0 && RCX_SENSORS == 3);
 u8 sensors_at_rest(struct rcx *b)
 {
-    const struct rcx_sensor *s = b->sensor;
-    u8 n = RCX_SENSORS, rest = 0;
+    u8 rest = 0;
 
-    do {
-        if (s->quiet == SENSOR_MOVING)
-            goto moving;
-        s++;
-    } while (--n);
-    rest = 1;
-moving:
+    if (b->sensor[0].quiet && b->sensor[1].quiet && b->sensor[2].quiet)
+        rest = 1;
     b->sensors_rest = rest;
     return rest;
 }
