@@ -8,7 +8,8 @@
  *   - 16 events on that touch sensor (every type an input has, some twice);
  *   - 16 events on 3 inputs that change every millisecond: a rotation sensor turning at 1 000 steps/s (its count
  *     checked afterwards: no step lost), a light sensor in percent mode with noise on every sample, and a light
- *     sensor in raw mode with slope 10 (change rate) on a triangle wave.
+ *     sensor in raw mode with slope 10 (change rate) on a triangle wave;
+ *   - 16 events on the timers and the counters (no floor in the issue: what the 10 ms look at them costs).
  * With --check it exits non-zero when a figure misses the issue's floor (or the brick stops answering); --still
  * measures and checks the cases with still inputs only (the test events.h8_still_inputs).
  * H8EVENTS_PROFILE=1 prints where each idle millisecond's states go (H8EVENTS_PCS=function: its instructions too);
