@@ -10,9 +10,18 @@
  *
  * Work goes only where events are: each input counts the events watching it and sensor[0] those watching a timer,
  * the message or a counter (struct rcx_sensor), so an input no event watches, or a 10 ms step with no event on the
- * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only. An event on an input
- * is still looked at after every sample, steady or not: its thresholds can be moved by SetSourceValue, which does
- * not tell the engine, and a calibration samples every millisecond.
+ * other sensors, costs nothing here, and an evaluation evaluates the events of one sensor only.
+ *
+ * And only when something may have moved: the events of an input are evaluated after the samples that the sensor
+ * engine works out in full (vm/sensors.c: a raw value that moved, or not yet the same SENSOR_DT_MS times), not after
+ * the steady ones, which change nothing. An input whose events want its next sample whatever it gives is marked
+ * moving (rcx_sensor.quiet), so that it is worked out in full: SetEvent (the first classification), CalibrateEvent
+ * and each calibration sample (8 of them, a millisecond apart, then the first classification), any SetSourceValue
+ * (a threshold or the hysteresis may have moved: events_look_again()), a value cleared or a mode or type changed
+ * (sensor_clear()). That is exact: with the value, the boolean and the thresholds as at the last evaluation, an
+ * evaluation changes nothing (the hysteresis is never negative: a range entered holds its value), so the events are
+ * as if looked at after every sample. Click timing needs no clock: a click's duration is judged when the state
+ * changes. A still input is then at rest (sensors_at_rest()) whether events watch it or not.
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -102,6 +111,17 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
     e->upper = events_default[row][1];
 }
 
+/* Every input is marked moving: the one that matters is among them, and that costs less than finding it (a sample
+ * worked out in full again gives what it gave). */
+RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
+void events_look_again(struct rcx *b)
+{
+    b->sensor[0].quiet = SENSOR_MOVING;
+    b->sensor[1].quiet = SENSOR_MOVING;
+    b->sensor[2].quiet = SENSOR_MOVING;
+    b->sensors_rest = 0;
+}
+
 /* Spec p. 25: tasks monitoring events are not told. */
 void events_clear_all(struct rcx *b)
 {
@@ -121,7 +141,6 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
     if (ev >= RCX_EVENTS || SOURCE > RCX_EVENT_SRC_LAST || (TYPE != RCX_EVENT_NONE && !bit_of(VALID_TYPES, TYPE)))
         return;
     e = &b->event[ev];
-    b->sensors_rest = 0; /* an input may gain a watcher: its samples must be fed (vm/sensors.h) */
     if (e->source)
         watch(b, e, 0xFF);
     memset(e, 0, sizeof *e); /* no sensor: KEY 0 */
@@ -132,6 +151,7 @@ void events_set_packed(struct rcx *b, u8 ev, u16 st)
         return;
     e->source = KEY(SOURCE);
     watch(b, e, 1);
+    events_look_again(b); /* its first classification */
 }
 #undef SOURCE
 #undef TYPE
@@ -152,6 +172,7 @@ void events_calibrate(struct rcx *b, const u8 *ins)
     e->u.cal.raw_sum = 0;
     e->u.cal.rem = 0;
     memcpy(e->u.cal.pct, ins + 2, sizeof e->u.cal.pct);
+    events_look_again(b); /* the samples to come */
 }
 
 /* v * f / 256 rounded toward zero, in 16 bits with the H8's 8 x 8 multiply (the low byte's product first: gcc then
@@ -187,13 +208,14 @@ static s16 add_sat(s16 a, s16 b)
  * the same A/D scale. */
 #define RAW_COUNT_ONE 0x2000
 enum { PCT_UPPER, PCT_LOWER, PCT_HYST }; /* struct rcx_event_cal.pct: CalibrateEvent's operands in order */
-static void calibrate_sample(const struct rcx_sensor *in, struct rcx_event *e, s16 avg)
+static void calibrate_sample(struct rcx_sensor *in, struct rcx_event *e, s16 avg)
 {
     struct rcx_event_cal *c = &e->u.cal;
     u8 m;
 
     e->state = RCX_EVENT_STATE_CAL_BUSY;
     if (in) {
+        in->quiet = SENSOR_MOVING; /* the next sample: the calibration's, or after the last the first classification */
         c->rem = (u8)(c->rem + (avg & 7));
         c->sum8 = (s16)(c->sum8 + (avg >> 3));
         c->raw_sum = (u16)(c->raw_sum + in->raw + RAW_COUNT_ONE);
@@ -278,7 +300,7 @@ static u8 classify(const struct rcx_event *e, s16 value)
 #define ANY EVENTS_ANY /* above every KEY */
 static u16 evaluate(struct rcx *b, struct rcx_event *e, u8 only)
 {
-    const struct rcx_sensor *in = NULL;
+    struct rcx_sensor *in = NULL;
     u8 s = (u8)(e->source - KEY(0)), to, from, bo;
     u16 happened = 0;
     s16 value;

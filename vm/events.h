@@ -102,6 +102,10 @@ static inline void events_counter_changed(struct rcx *b, u8 n)
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 static inline void events_message_changed(struct rcx *b) { events_evaluate(b, 0, EVENTS_KEY(RCX_EVENT_SRC_MESSAGE)); }
 void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean may have changed */
+/* The events of every input must look at its next sample even if the input does not move (vm/events.c): an event was
+ * set or calibrated, a threshold or the hysteresis may have moved (SetSourceValue). (The timers, the message and the
+ * counters are looked at every 10 ms anyway.) */
+void events_look_again(struct rcx *b);
 /* Timers, the message and the counters can also change through byte codes that do not tell the engine (SetVar on
  * variables 0-2, ClearTimer, the timers' own tick): they are looked at on the 10 ms grid that Wait and the click
  * durations use, right after each 100 ms timer step (vm_tick calls this at the end of each 10 ms step, once the

@@ -116,7 +116,7 @@ struct rcx {
     u8 turn_off;           /* PBTurnOff accepted */
     u8 tx_range;           /* PbTXPower: 0 short, 1 long */
     u8 boot_mode;          /* GoIntoBootMode accepted */
-    u8 sensors_rest;       /* sensors_at_rest() found every input steady and unwatched; cleared when that may end */
+    u8 sensors_rest;       /* sensors_at_rest() found every input steady; cleared when that may end */
 
     void *port;     /* the hardware port's own data for this brick (host simulator); the machine never uses it */
 

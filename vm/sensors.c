@@ -5,7 +5,9 @@
  *
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
- * (rcx_sensor.quiet), telling only the events that watch the input, if any.
+ * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input: an event whose
+ * input did not move costs nothing, and such an input is at rest (sensors_at_rest()) like one no event watches. The
+ * event engine marks an input moving when its events want the next sample whatever it gives (vm/events.c).
  */
 #include "rcx.h"
 #include "hal.h"
@@ -82,7 +84,12 @@ static s16 celsius(u16 raw)
 /* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. For a 10-bit raw that
  * is the high byte of raw * 4: two additions, where gcc shifts right in a six-step loop. */
 static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
-#define rotation_phase(raw) phase_of[(u8)((u16)((raw) << 2) >> 8)]
+static inline u8 rotation_phase(u16 raw)
+{
+    raw = (u16)(raw << 2);
+    __asm__("" : "+r"(raw)); /* no code: keeps gcc from folding the two steps into raw >> 6, a six-step loop */
+    return phase_of[(u8)(raw >> 8)];
+}
 
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
 {
@@ -93,7 +100,7 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
     s = &b->sensor[n];
     s->value = 0;
     s->quiet = SENSOR_MOVING;
-    b->sensors_rest = 0;
+    b->sensors_rest = 0; /* (the events saw the value before: the next sample, moving, is theirs) */
     return s;
 }
 
@@ -229,22 +236,15 @@ void sensor_sample(struct rcx *b, u8 n, u16 raw)
     s = &b->sensor[n];
     if (raw != s->quiet)
         sample(b, s, raw);
-    else if (s->watched)
-        events_input(b, s->number);
 }
 
+RCX_STATIC_ASSERT(moving_is_0, SENSOR_MOVING == 0 && RCX_SENSORS == 3);
 u8 sensors_at_rest(struct rcx *b)
 {
-    const struct rcx_sensor *s = b->sensor;
-    u8 n = RCX_SENSORS, rest = 0;
+    u8 rest = 0;
 
-    do {
-        if (s->quiet == SENSOR_MOVING || s->watched)
-            goto moving;
-        s++;
-    } while (--n);
-    rest = 1;
-moving:
+    if (b->sensor[0].quiet && b->sensor[1].quiet && b->sensor[2].quiet)
+        rest = 1;
     b->sensors_rest = rest;
     return rest;
 }

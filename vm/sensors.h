@@ -57,9 +57,9 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its 
 struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: value from 0; as sensor_clear */
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
 void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
-/* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event's watch changes) when a sample of every
- * input equal to its last one would change nothing: all steady (rcx_sensor.quiet), none watched by an event. A
- * port that sees its inputs unchanged may then skip sensor_sample() for them. */
+/* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event changes) when a sample of every input
+ * equal to its last one would change nothing: all steady (rcx_sensor.quiet; the event engine marks an input moving
+ * when its events want a sample). A port that sees its inputs unchanged may then skip sensor_sample() for them. */
 u8 sensors_at_rest(struct rcx *b);
 
 #endif

@@ -390,4 +390,7 @@ void source_set(struct rcx *b, struct rcx_task *t, u8 src, u16 index, s16 value)
 #endif
     if (src == RCX_SRC_COUNTER)
         events_counter_changed(b, (u8)index);
+    /* A threshold or the hysteresis of an input's event may have moved: its next sample is looked at. Asked of any
+     * store here, which costs fewer bytes than the test and no more than an extra look (which changes nothing). */
+    events_look_again(b);
 }
