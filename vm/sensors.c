@@ -196,10 +196,10 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     s16 v;
     u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
 
+    s->quiet = raw; /* | SENSOR_STEADY, as sensor_sample() passes it */
     raw &= 0x3FF;
     s->past[0] = s->past[1];
     s->past[1] = last;
-    s->quiet = raw | SENSOR_STEADY;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
     turn(s, raw);
