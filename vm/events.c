@@ -374,13 +374,3 @@ void events_raise(struct rcx *b, u16 mask)
         }
     while (++t < b->task + RCX_TASKS);
 }
-
-void events_input(struct rcx *b, u8 n)
-{
-    const struct rcx_sensor *s;
-
-    if (n < RCX_SENSORS) {
-        s = b->sensor + n;
-        events_evaluate(b, s->watched, KEY(n));
-    }
-}

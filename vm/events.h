@@ -101,7 +101,7 @@ static inline void events_counter_changed(struct rcx *b, u8 n)
 }
 /* Every message received, set or cleared is a mailbox event (p. 103; reference-firmware.md for the clear). */
 static inline void events_message_changed(struct rcx *b) { events_evaluate(b, 0, EVENTS_KEY(RCX_EVENT_SRC_MESSAGE)); }
-void events_input(struct rcx *b, u8 n); /* input n's processed value or boolean may have changed */
+/* events_input(b, n): input n's processed value or boolean may have changed (inline, in rcx.h: it needs struct rcx). */
 /* The events of every input must look at its next sample even if the input does not move (vm/events.c): an event was
  * set or calibrated, a threshold or the hysteresis may have moved (SetSourceValue). (The timers, the message and the
  * counters are looked at every 10 ms anyway.) */

@@ -200,4 +200,12 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
 
+/* Input n's processed value or boolean may have changed. Inline: the sensor engine, which has the input at hand,
+ * calls events_evaluate() itself (vm/sensors.c), and the image needs no function of its own for this. */
+static inline void events_input(struct rcx *b, u8 n)
+{
+    if (n < RCX_SENSORS)
+        events_evaluate(b, b->sensor[n].watched, EVENTS_KEY(n));
+}
+
 #endif

@@ -219,8 +219,8 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;
-    if (s->watched)
-        events_input(b, s->number);
+    if (s->watched) /* events_input(), with the input at hand */
+        events_evaluate(b, s->watched, EVENTS_KEY(s->number));
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
