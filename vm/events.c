@@ -280,16 +280,17 @@ static u8 changed(struct rcx *b, struct rcx_event *e, u8 from, u8 to)
  * the 16-bit limits. */
 static u8 classify(const struct rcx_event *e, s16 value)
 {
-    s16 h = 0;
+    s16 upper = e->upper, lower = e->lower, h = e->hysteresis;
 
-    if (e->state == RCX_EVENT_STATE_HIGH)
-        h = e->hysteresis;
-    if (value > add_sat(e->upper, (s16)-h))
+    if (h) { /* 0 unless SetSourceValue or CalibrateEvent set it: then the thresholds are as they are */
+        if (e->state == RCX_EVENT_STATE_HIGH)
+            upper = add_sat(upper, (s16)-h);
+        if (e->state == RCX_EVENT_STATE_LOW)
+            lower = add_sat(lower, h);
+    }
+    if (value > upper)
         return RCX_EVENT_STATE_HIGH;
-    h = 0;
-    if (e->state == RCX_EVENT_STATE_LOW)
-        h = e->hysteresis;
-    if (value < add_sat(e->lower, h))
+    if (value < lower)
         return RCX_EVENT_STATE_LOW;
     return RCX_EVENT_STATE_NORMAL;
 }
