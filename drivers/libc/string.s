@@ -13,22 +13,33 @@
 	.global	_memcmp
 
 ; Overlapping regions: copied upwards when the destination lies below the source, downwards otherwise.
-; memcpy (no overlap) takes the downward loop.
+; Upwards is the H8/300's block move EEPMOV (@R5+ to @R6+, R4L bytes): about 6 states a byte in external RAM
+; against some 40 for a loop, so that compacting the program memory holds the main loop a few ms at most (issue 21,
+; docs/timing.md). 128 bytes an instruction: no interrupt is taken during one (800 states). memcpy (no overlap)
+; moves upwards too.
 _memmove:
 	cmp.w	r1,r0
+	beq	9f			; in place: nothing to move
 	bhi	.Lcopy_down
-	mov.w	r0,@-r7
-	add.w	r1,r2			; r2 = end of the source
-	bra	2f
-1:	mov.b	@r1+,r3l
-	mov.b	r3l,@r0
-	adds	#1,r0
-2:	cmp.w	r2,r1
-	bne	1b
-	mov.w	@r7+,r0
-	rts
-
 _memcpy:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
+	mov.w	r1,r5
+	mov.w	r0,r6
+	shll	r2l
+	rotxl	r2h			; r2h = n / 128 (n < 16 KB: the arena is smaller)
+	shlr	r2l			; r2l = n mod 128, moved first
+	mov.b	r2l,r4l
+1:	eepmov
+	mov.b	#128,r4l
+	dec	r2h
+	bpl	1b
+	mov.w	@r7+,r6
+	mov.w	@r7+,r5
+	mov.w	@r7+,r4
+9:	rts
+
 .Lcopy_down:
 	add.w	r2,r1			; r1, r3: one past the ends
 	mov.w	r0,r3
