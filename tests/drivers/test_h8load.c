@@ -329,8 +329,8 @@ static void sixteen_events_on_changing_inputs_all_fire_and_the_tick_keeps_its_bo
  * than SERVICE_GAP_MAX either. The program memory full (five slots of ten tasks, 11 000 bytes and more), then: a
  * BeginOfTask of a 1 000-byte task in slot 0 (the arena moved up), its blocks, DeleteAllTasks in a full slot, and
  * nqc -clear (host-tools.md: StopAllTasks, then DeleteAllSubs and DeleteAllTasks in each slot, SetDatalog 0).
- * NOT MET YET: each of these moves the arena's tail with a byte loop (some 40 states a byte, 27 ms for 11 000
- * bytes), DeleteAllTasks once per task; the figures are in docs/timing.md. Skipped unless H8LOAD_MEMORY is set.
+ * NOT MET YET: memmove is EEPMOV now (6 states a byte), but DeleteAllTasks moves the tail once per task and the end of
+ * a download walks the slot for Swan code; the figures are in docs/timing.md. Skipped unless H8LOAD_MEMORY is set.
  */
 #define BIG_TASK 240       /* bytes, the largest h8m_download_task-free download in BLOCK-byte blocks below */
 #define BLOCK 48
