@@ -1,8 +1,9 @@
 ; memcpy, memmove, memset and memcmp for the freestanding firmware (rcx_string.h): the portable code calls
-; them and gcc emits calls to memcpy/memset for struct copies. Byte loops, in assembler because a C loop
-; needs more registers than gcc's calling convention leaves free and pays for saving them; the brick
-; copies little (downloads, compaction). string.c is the same in C, the reference on the host;
-; tests/drivers/test_h8image.c checks these against the host's.
+; them and gcc emits calls to memcpy/memset for struct copies. In assembler because a C loop needs more
+; registers than gcc's calling convention leaves free and pays for saving them; memcpy and memmove use the
+; CPU's block move where they can, since compacting the program memory moves up to the whole arena.
+; string.c is the same in C, the reference on the host; tests/drivers/test_h8image.c checks these against
+; the host's.
 ;
 ; Arguments in r0, r1, r2 (dst or a, src or c or b, n), result in r0; r0-r3 may be clobbered.
 
@@ -15,8 +16,8 @@
 ; Overlapping regions: copied upwards when the destination lies below the source, downwards otherwise.
 ; Upwards is the H8/300's block move EEPMOV (@R5+ to @R6+, R4L bytes): about 6 states a byte in external RAM
 ; against some 40 for a loop, so that compacting the program memory holds the main loop a few ms at most (issue 21,
-; docs/timing.md). 128 bytes an instruction: no interrupt is taken during one (800 states). memcpy (no overlap)
-; moves upwards too.
+; docs/timing.md). 255 bytes at most an instruction, during which no interrupt is taken (1 550 states). memcpy
+; (no overlap) moves upwards too.
 _memmove:
 	cmp.w	r1,r0
 	beq	9f			; in place: nothing to move
@@ -27,10 +28,8 @@ _memcpy:
 	mov.w	r6,@-r7
 	mov.w	r1,r5
 	mov.w	r0,r6
-	shll	r2l
-	rotxl	r2h			; r2h = n / 128 (n < 16 KB: the arena is smaller)
-	shlr	r2l			; r2l = n mod 128, moved first
-	mov.b	r2l,r4l
+	mov.b	r2l,r4l			; n mod 256 first (up to 1 550 states without interrupts)
+	add.b	r2h,r2h			; then n / 256 twice 128 (n < 16 KB: the arena is smaller)
 1:	eepmov
 	mov.b	#128,r4l
 	dec	r2h
@@ -46,9 +45,8 @@ _memcpy:
 	add.w	r2,r3
 	bra	2f
 1:	subs	#1,r1
-	subs	#1,r3
 	mov.b	@r1,r2l
-	mov.b	r2l,@r3
+	mov.b	r2l,@-r3
 2:	cmp.w	r0,r3
 	bne	1b
 	rts
