@@ -51,6 +51,9 @@ _memcpy:
 	bne	1b
 	rts
 
+; memset runs from F000 (section .high, linker/openrcx.ld), where it costs no program memory: it is called only
+; once crt0.s has copied .high there.
+	.section .hitext,"x"
 _memset:
 	mov.w	r0,r3
 	add.w	r0,r2			; r2 = end
@@ -61,6 +64,7 @@ _memset:
 	bne	1b
 	rts
 
+	.section .text
 ; <0, 0 or >0 as the first differing byte (unsigned) of a is below, equal to or above b's.
 _memcmp:
 	add.w	r0,r2			; r2 = end of a
