@@ -26,9 +26,6 @@
 #define TICKS_PER_PASS 4
 #define RUN_SLICE RCX_RUN_CHUNK
 #define TICKS_BACKLOG 100
-/* Quiet milliseconds the tasks may run through without the loop coming back: with the millisecond under way, a
- * pass at most every 4 ms. */
-#define RUN_QUIET_MAX 3
 
 static struct rcx_brick brick;
 
@@ -127,7 +124,7 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
     if ((u8)(done - seen) > DRV_AD_SLOTS * DRV_AD_SLOT)
         seen = (u8)(done - DRV_AD_SLOTS * DRV_AD_SLOT);
     slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
-    rt_sensors_late(&brick, (u8)(done - seen) > DRV_AD_SLOT); /* newer scans wait: events told of the newest */
+    rt_sensors_late(&brick, (u8)(done - seen - DRV_AD_SLOT)); /* non-zero: newer scans wait, events hear of those */
     /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
     p = s + 3;
     i = 3;
@@ -260,8 +257,6 @@ int main(void)
          * work ends it. Not this time if such an interrupt came since the inputs were read: rcx.yield, which it
          * set, was cleared above, but drv_woken tells. */
         quiet = brick.vm.runmask && !drv_woken ? quiet_ms() : 0;
-        if (quiet > RUN_QUIET_MAX) /* back at the IR link and the buttons within 5 ms (docs/timing.md) */
-            quiet = RUN_QUIET_MAX;
         drv_quiet = quiet;
         /* Nothing ran and nothing is owed (a scan left for the next pass must not wait out a sleep): sleep until
          * the next interrupt (at most 1 ms away), which saves the batteries. Through quiet milliseconds it sleeps

@@ -27,6 +27,11 @@ static const char *image_path, *nm_path;
  * now is that the main loop is back before it drops owed milliseconds (TICKS_BACKLOG, drivers/h8300/main.c), so
  * the brick's clock keeps its time. H8LOAD_MEMORY=1 asks SERVICE_GAP_MAX. */
 #define MEMORY_GAP_MAX (100 * H8M_MS)
+/* Inputs at rest (events cost nothing on them): the tasks run on through up to 9 quiet milliseconds (rt_quiet) without
+ * the loop coming back. An IR byte ends such a run at once (the pings' latency is held to LATENCY_MAX), and the
+ * buttons are looked at when it ends, at most 10 ms on (buttons_are_seen). Capping the run at 3 quiet milliseconds
+ * to keep SERVICE_GAP_MAX here cost a lone task 5 % and 6 bytes (docs/timing.md). */
+#define QUIET_GAP_MAX (11 * H8M_MS)
 #define TICK_MAX 2000                    /* states of the tick interrupt, ROM entry included (docs/timing.md) */
 
 static const uint8_t spin[] = { 0x24, 0x00, 0x02, 0x01, 0x00, 0x27, 0x86 }; /* nqc -TRCX2 -L: while (true) x++; */
@@ -221,7 +226,7 @@ static void sixteen_events_on_a_still_input_leave_the_brick_answering(void **sta
     start_spinner_and_a_second();
     answers_and_keeps_time();
     watch_report("16 events, still input");
-    assert_true(gap_max <= SERVICE_GAP_MAX);
+    assert_true(gap_max <= QUIET_GAP_MAX);
     assert_true(tick_max <= TICK_MAX);
     buttons_are_seen();
 }
