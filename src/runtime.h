@@ -75,6 +75,12 @@ void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 
 /* A 10-bit A/D sample of input 0-2, every 1 ms. */
 void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
+/* Nonzero: the samples given from now on are late, newer ones wait behind them (the port fell behind); their values
+ * and rotation steps are kept, their events told only of the newest (vm/sensors.c). */
+static inline void rt_sensors_late(struct rcx_brick *k, u8 late)
+{
+    k->vm.sensor[0].late = late;
+}
 /* After samples of all inputs: nonzero when another scan equal to them would change nothing, which
  * rt_sensors_resting then tells until that may no longer be so (vm/sensors.h, sensors_at_rest). A port may skip
  * such scans. */

@@ -219,8 +219,15 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
         v = converted(mode, raw);
     s->value = v;
     s->raw = raw;
-    if (s->watched) /* events_input(), with the input at hand */
-        events_evaluate(b, s->watched, EVENTS_KEY(s->number));
+    /* A late sample (newer ones wait behind it: the brick fell behind) keeps its value and rotation step, but its
+     * events are told only of the newest, which is worked out in full for them: an overloaded brick evaluates its
+     * events less often and loses no rotation step (issue 21). */
+    if (s->watched) {
+        if (b->sensor[0].late)
+            s->quiet = SENSOR_MOVING;
+        else /* events_input(), with the input at hand */
+            events_evaluate(b, s->watched, EVENTS_KEY(s->number));
+    }
 }
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,

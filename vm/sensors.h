@@ -51,6 +51,7 @@ struct rcx_sensor {
     u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
     u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
     u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
+    u8 late;        /* in sensor[0]: the samples being fed are late, newer ones wait (sensor_sample) */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */

@@ -124,6 +124,7 @@ static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
     if ((u8)(done - seen) > DRV_AD_SLOTS * DRV_AD_SLOT)
         seen = (u8)(done - DRV_AD_SLOTS * DRV_AD_SLOT);
     slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
+    rt_sensors_late(&brick, (u8)(done - seen - DRV_AD_SLOT)); /* non-zero: newer scans wait, events hear of those */
     /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
     p = s + 3;
     i = 3;

@@ -244,6 +244,26 @@ static int unknown(struct h8 *h, uint16_t at, uint16_t w)
     return -1;
 }
 
+/*
+ * 7B5C 598F, EEPMOV (H8/300 programming manual): while R4L is not 0, the byte at @R5 to @R6, R5 and R6 up by one,
+ * R4L down by one. Flags unchanged. States 8 + 4n on-chip: the 2 words fetched, and source and destination each
+ * accessed n + 1 times (the last read and write are not done here, only their states counted, at where R5 and R6
+ * end). One step of the simulator, so no interrupt is taken in the middle, as on the chip (the H8/300 accepts none
+ * during EEPMOV).
+ */
+static int eepmov(struct h8 *h, uint16_t at, uint16_t w1)
+{
+    if (w1 != 0x7B5C || fetch(h) != 0x598F)
+        return unknown(h, at, w1);
+    for (; h->r[4] & 0xFF; h->r[4]--) {
+        wr8(h, h->r[6], rd8(h, h->r[5]));
+        h->r[5]++;
+        h->r[6]++;
+    }
+    h->states += (region(h->r[5]) == ONCHIP ? 2 : 3) + (region(h->r[6]) == ONCHIP ? 2 : 3);
+    return h->error[0] ? -1 : 0;
+}
+
 /* 7C-7F: a bit instruction on memory, the operation in the second word */
 static int membit(struct h8 *h, uint16_t at, uint16_t w1)
 {
@@ -483,6 +503,8 @@ static int step(struct h8 *h)
         *rd = fetch(h);
         nz16(h, *rd);
         return 0;
+    case 0x7B:
+        return eepmov(h, at, w);
     case 0x7C: case 0x7D: case 0x7E: case 0x7F:
         return membit(h, at, w);
     default:

@@ -201,6 +201,70 @@ static void memory_functions_as_linked(void **state)
             }
 }
 
+/* Lengths past EEPMOV's 128-byte steps (string.s), from external RAM to external RAM, both directions of overlap. */
+static void long_moves_as_linked(void **state)
+{
+    static const unsigned lengths[] = { 127, 128, 129, 255, 256, 257, 300, 1000 };
+    static uint8_t ref[0x600];
+    const uint16_t base = 0x9000;
+    (void)state;
+    for (unsigned i = 0; i < sizeof lengths / sizeof lengths[0]; i++)
+        for (unsigned d = 1; d < 400; d += 133) {
+            unsigned n = lengths[i];
+            for (unsigned k = 0; k < sizeof ref; k++)
+                h.mem[base + k] = ref[k] = (uint8_t)rnd();
+            h8_run(&h, "_memmove", base + 8, base + 8 + d, n, NULL, 0);
+            memmove(ref + 8, ref + 8 + d, n);
+            assert_memory_equal(h.mem + base, ref, sizeof ref);
+            h8_run(&h, "_memmove", base + 8 + d, base + 8, n, NULL, 0);
+            memmove(ref + 8 + d, ref + 8, n);
+            assert_memory_equal(h.mem + base, ref, sizeof ref);
+            h8_run(&h, "_memcpy", base + 0x500 - n / 4, base + 8, n / 4, NULL, 0);
+            memcpy(ref + 0x500 - n / 4, ref + 8, n / 4);
+            assert_memory_equal(h.mem + base, ref, sizeof ref);
+        }
+}
+
+/*
+ * h8sim's EEPMOV as the H8/300 programming manual gives it: R4L bytes from @R5 up to @R6, R5 and R6 past them, R4L
+ * 0, the flags kept, 8 + 4n states on-chip (source and destination accessed n + 1 times); external RAM 3 states a
+ * byte. No byte moved for R4L = 0; R4H is not part of the count.
+ */
+static void eepmov_as_the_manual_says(void **state)
+{
+    static const uint8_t code[] = { 0x7B, 0x5C, 0x59, 0x8F };
+    static const struct { uint16_t code, from, to; uint8_t n; unsigned states; } c[] = {
+        { 0xFD80, 0xFE00, 0xFE80, 3, 8 + 4 * 3 },
+        { 0xFD80, 0xFE00, 0xFE80, 0, 8 },
+        { 0x9000, 0xA000, 0xA100, 100, 4 * 3 + 101 * 6 },
+    };
+    (void)state;
+    for (unsigned i = 0; i < sizeof c / sizeof c[0]; i++) {
+        struct h8 *m = calloc(1, sizeof *m);
+        assert_non_null(m);
+        h8_reset(m);
+        memcpy(m->mem + c[i].code, code, sizeof code);
+        for (unsigned k = 0; k < 128; k++)
+            m->mem[c[i].from + k] = (uint8_t)(k * 7 + 1);
+        m->pc = c[i].code;
+        m->r[4] = (uint16_t)(0x3300 | c[i].n);
+        m->r[5] = c[i].from;
+        m->r[6] = c[i].to;
+        m->ccr = 0x8F;
+        m->states = 0;
+        assert_int_equal(h8_step(m), 0);
+        assert_int_equal(m->pc, c[i].code + 4);
+        assert_int_equal(m->r[4], 0x3300);
+        assert_int_equal(m->r[5], c[i].from + c[i].n);
+        assert_int_equal(m->r[6], c[i].to + c[i].n);
+        assert_int_equal(m->ccr, 0x8F);
+        assert_memory_equal(m->mem + c[i].to, m->mem + c[i].from, c[i].n);
+        assert_int_equal(m->mem[c[i].to + c[i].n], 0);
+        assert_int_equal(m->states, c[i].states);
+        free(m);
+    }
+}
+
 static int sign(long v)
 {
     return v < 0 ? -1 : v > 0;
@@ -731,6 +795,8 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(receive_ring_as_compiled, load),
         cmocka_unit_test_setup(lcd_frame_as_compiled, load),
         cmocka_unit_test_setup(memory_functions_as_linked, load),
+        cmocka_unit_test_setup(long_moves_as_linked, load),
+        cmocka_unit_test(eepmov_as_the_manual_says),
         cmocka_unit_test_setup(memcmp_as_linked, load),
         cmocka_unit_test_setup(helpers_keep_the_callers_registers, load),
         cmocka_unit_test_setup(sci_interrupt_receives_bytes_and_errors, load),

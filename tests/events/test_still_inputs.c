@@ -93,6 +93,39 @@ static void touch_events_fire_at_the_edges(void **state)
     brick_free(b);
 }
 
+/* Late samples (the brick fell behind and feeds the scans that waited, rcx_sensor.late in sensor[0]): their values
+ * and rotation steps all count, but the events are told only of the newest sample, worked out in full for them even
+ * when it repeats the one before. */
+static void late_samples_count_and_tell_only_the_newest(void **state)
+{
+    static const u16 phase[4] = { 1023, 777, 368, 532 }; /* rotation phases 0-3, counted forwards */
+    struct rcx *b = brick();
+    unsigned i;
+    (void)state;
+    sensor_type(b, 0, 1);
+    set_event(b, 0, 0, PRESSED);
+    still(b, NOTHING);
+    b->sensor[0].late = 1;
+    feed(b, 180, 3);                                   /* pressed, in three late samples */
+    assert_int_equal(fired(b), 0);
+    assert_int_equal(b->sensor[0].value, 1);          /* the value moved with them */
+    b->sensor[0].late = 0;
+    feed(b, 180, 1);                                   /* the newest repeats them: the press is told now */
+    assert_int_equal(fired(b), 0x1);
+    still(b, 180);
+    sensor_type(b, 1, 4);                              /* rotation on input 2: every late step counts */
+    b->sensor[0].late = 1;
+    for (i = 1; i <= 40; i++) {
+        sensor_sample(b, 0, 180);
+        sensor_sample(b, 1, phase[i & 3]);
+        sensor_sample(b, 2, NOTHING);
+        vm_tick(b);
+    }
+    b->sensor[0].late = 0;
+    assert_int_equal(b->sensor[1].value < 0 ? -b->sensor[1].value : b->sensor[1].value, 40);
+    brick_free(b);
+}
+
 /* Raw mode, thresholds 300 and 700: the ranges entered, a click (LOW -> HIGH -> LOW within the 150 ms duration), a
  * double click (a click starting within the duration after the last one ended) and a press too slow to be a click. */
 static void range_and_click_events_fire_when_the_value_moves(void **state)
@@ -297,6 +330,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(a_still_input_costs_its_events_nothing),
         cmocka_unit_test(touch_events_fire_at_the_edges),
+        cmocka_unit_test(late_samples_count_and_tell_only_the_newest),
         cmocka_unit_test(range_and_click_events_fire_when_the_value_moves),
         cmocka_unit_test(change_rate_fires_when_the_slope_changes),
         cmocka_unit_test(a_threshold_moved_is_seen_at_the_next_sample),

@@ -249,7 +249,10 @@ def first_try(tower, what, args):
     took = time.monotonic() - start
     out = (r.stdout + r.stderr).decode("utf-8", "replace")
     check(r.returncode == 0, "%s failed after %.1f s: %s" % (what, took, out))
-    check(tower.resent() == 0, "%s: %d packets sent again (no reply in time)" % (what, tower.resent()))
+    # Before the hub's bytes were taken at once, every block's reply came seconds late and nqc gave up. Two
+    # packets sent again are allowed: the ASan build beside the rest of the suite on a loaded machine has missed
+    # nqc's 300 ms once in a firmware download's 70-odd packets.
+    check(tower.resent() <= 2, "%s: %d packets sent again (no reply in time)" % (what, tower.resent()))
     return out, took
 
 
