@@ -440,6 +440,7 @@ int main(int argc, char **argv)
         run(s, duration);
     if (s->panel)
         panel_stop(s->panel);
+    sim_world_set(s, NULL); /* before the bricks it reads go */
     for (i = 0; i < s->nbricks; i++) {
         trace_flush_sound(s->brick[i]);
         free(s->brick[i]);
@@ -448,7 +449,6 @@ int main(int argc, char **argv)
         fprintf(s->trace, "{\"t\":%llu,\"end\":\"%s\"}\n", s->room.now / 1000,
                 s->quit ? "quit" : stop_signal ? "signal" : "duration");
     room_close(&s->room);
-    sim_world_set(s, NULL);
     if (s->trace && s->trace != stdout)
         fclose(s->trace);
     free(s->events);

@@ -50,6 +50,7 @@ struct sim_brick {
     unsigned long ir_in, ir_out;   /* IR bytes heard by its receiver and sent by its LED */
     /* Last state reported to the trace. */
     unsigned char motor[3], sensor_power[3], lcd[9], range;
+    unsigned char world_motor[3];  /* the outputs at the last pose line of its robot (--world, sim_world.c) */
     int lcd_known;
     unsigned sound_hz;
     sim_us sound_start;

@@ -11,8 +11,6 @@
 
 #define SIM_WORLD_TRACE_MS 100
 
-static unsigned char last_motor[SIM_MAX_BRICKS][3]; /* the outputs at the last pose line, by brick */
-
 static void trace_poses(struct sim *s, int changed_only, const int *changed)
 {
     int i;
@@ -41,8 +39,8 @@ void sim_world_step(struct sim *s)
             io[i].sensor_power[k] = b->mode == SIM_FIRMWARE && b->sensor_power[k];
             io[i].raw[k] = b->raw[k];
         }
-        if (memcmp(last_motor[i], io[i].motor, 3)) {
-            memcpy(last_motor[i], io[i].motor, 3);
+        if (memcmp(b->world_motor, io[i].motor, 3)) {
+            memcpy(b->world_motor, io[i].motor, 3);
             changed[i] = any = 1;
         }
     }
@@ -55,9 +53,12 @@ void sim_world_step(struct sim *s)
 
 void sim_world_set(struct sim *s, struct world *w)
 {
+    int i;
+
     world_free(s->world);
     s->world = w;
-    memset(last_motor, 0, sizeof last_motor);
+    for (i = 0; i < s->nbricks; i++)
+        memset(s->brick[i]->world_motor, 0, sizeof s->brick[i]->world_motor);
 }
 
 int sim_world_open(struct sim *s, const char *scene)

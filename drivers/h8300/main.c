@@ -20,7 +20,7 @@
  * comes, one only if it costs the events on its inputs a millisecond or more, and counts up to TICKS_PER_PASS of the
  * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time). While a scan or a millisecond is still
  * owed the tasks get a slice of one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon
- * back: a program that asks for more than the CPU can do gets fewer samples (the ring keeps the latest four, irq.s)
+ * back: a program that asks for more than the CPU can do gets fewer event evaluations (scans fed late, feed_scan)
  * and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
  */
 #define TICKS_PER_PASS 4
@@ -106,9 +106,11 @@ static inline u16 ad_raw10(u16 addr)
 
 /*
  * The oldest scan not yet fed, as one sample per input. One per call: the main loop feeds scans until a tick comes,
- * never until the ring is empty, since the interrupt stores a scan every millisecond while an event watches an input,
- * and were feeding one to take longer, such a loop would never end (issue 21). A scan the interrupt did not store (see irq.s) was one the runtime said would change
- * nothing (rt_sensors_at_rest).
+ * never until the ring is empty, since the interrupt stores a scan every millisecond while an input moves, and were
+ * feeding one to take longer, such a loop would never end (issue 21). A scan with newer ones behind it is fed late
+ * (rt_sensors_late): its values and rotation steps count, its events hear only of the newest, so the ring empties
+ * fast. A scan the interrupt did not store (see irq.s) was one the runtime said would change nothing
+ * (rt_sensors_at_rest).
  */
 static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
 {
