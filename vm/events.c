@@ -22,6 +22,11 @@
  * evaluation changes nothing (the hysteresis is never negative: a range entered holds its value), so the events are
  * as if looked at after every sample. Click timing needs no clock: a click's duration is judged when the state
  * changes. A still input is then at rest (sensors_at_rest()) whether events watch it or not.
+ *
+ * And a moving input only when its value leaves the range in which no event of it can change (events_window(): each
+ * in its state, no boolean edge watched, no calibration): a light sensor's noise or a rotation sensor's count inside
+ * the thresholds costs the events nothing (issue 21: 16 events on three inputs moving every millisecond took some
+ * 2 800 states a millisecond, now next to none).
  */
 #include "rcx_string.h"
 #include "rcx.h"
@@ -132,9 +137,13 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
 RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
 void events_look_again(struct rcx *b)
 {
-    b->sensor[0].quiet = SENSOR_MOVING;
-    b->sensor[1].quiet = SENSOR_MOVING;
-    b->sensor[2].quiet = SENSOR_MOVING;
+    struct rcx_sensor *s = b->sensor;
+
+    do {
+        s->quiet = SENSOR_MOVING;
+        s->lo = 1; /* (empty) */
+        s->hi = 0;
+    } while (++s < b->sensor + RCX_SENSORS);
     b->sensors_rest = 0;
 }
 
@@ -376,6 +385,41 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
     } while (bit <<= 1);
     if (fired)
         events_raise(b, fired);
+}
+
+/* After an evaluation of input `in`'s events (KEY `key`): the values that leave each of them in its state with no
+ * hysteresis, which only widens the range being left (LOW below lower, NORMAL from lower to upper, HIGH above upper).
+ * While the value stays there, looking at the events changes nothing (click timing is judged when a state changes,
+ * and a boolean's edge fires only an event of types 0-7), so the sensor engine does not look (vm/sensors.c). An
+ * event of types 0-7, or one calibrating or not yet classified, leaves no value: it looks at every sample. A pass of
+ * its own rather than in events_evaluate(): there it would cost more bytes than here, in the registers it takes. */
+void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
+{
+    struct rcx_event *e = b->event;
+    s16 lo = -32768, hi = 32767, l, u;
+
+    do {
+        if (e->source != key)
+            continue;
+        l = e->lower;
+        u = e->upper;
+        if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
+            l = 1;
+            u = 0;
+        } else if (e->state == RCX_EVENT_STATE_HIGH) {
+            l = u == 32767 ? u : (s16)(u + 1);
+            u = 32767;
+        } else if (e->state == RCX_EVENT_STATE_LOW) {
+            u = l == -32768 ? l : (s16)(l - 1);
+            l = -32768;
+        }
+        if (l > lo)
+            lo = l;
+        if (u < hi)
+            hi = u;
+    } while (++e < b->event + RCX_EVENTS);
+    in->lo = lo;
+    in->hi = hi;
 }
 
 /* Spec p. 63: behave as if these events had happened. Every task monitoring one of them takes its EV exit; the

@@ -94,6 +94,9 @@ void events_raise(struct rcx *b, u16 mask);                           /* DirectE
 #define EVENTS_KEY(sensor) ((u8)((sensor) + 1))
 #define EVENTS_ANY 0xFE /* above every KEY */
 void events_evaluate(struct rcx *b, u8 left, u8 only);
+struct rcx_sensor;
+/* Sets in->lo ... in->hi (vm/sensors.h) to the values of input `in` (KEY `key`) that change nothing for its events. */
+void events_window(struct rcx *b, struct rcx_sensor *in, u8 key);
 static inline void events_counter_changed(struct rcx *b, u8 n)
 {
     if (n < RCX_COUNTERS)

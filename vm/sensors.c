@@ -5,8 +5,9 @@
  *
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
- * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input: an event whose
- * input did not move costs nothing, and such an input is at rest (sensors_at_rest()) like one no event watches. The
+ * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input, and only when
+ * the value left lo ... hi (vm/events.c events_window()): an event whose input did not move, or moved where nothing
+ * can happen to it, costs nothing, and a still input is at rest (sensors_at_rest()) like one no event watches. The
  * event engine marks an input moving when its events want the next sample whatever it gives (vm/events.c).
  */
 #include "rcx.h"
@@ -99,8 +100,7 @@ struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
         return NULL;
     s = &b->sensor[n];
     s->value = 0;
-    s->quiet = SENSOR_MOVING;
-    b->sensors_rest = 0; /* (the events saw the value before: the next sample, moving, is theirs) */
+    events_look_again(b); /* the events saw the value and the boolean before (SetSensorType clears the boolean) */
     return s;
 }
 
@@ -131,13 +131,25 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
 
+/* x * 25 / 156 for x = 1023 - raw, 0-630: x * 10503 / 65536, the same for every such x (25 / 156 = 0.1602564...,
+ * 10503 / 65536 = 0.1602631...: the error stays below 1/156, the least fraction the exact quotient can have). Worked
+ * out with the H8's 8 x 8 multiply on the bytes h and l of x, 10503 being 41 * 256 + 7:
+ * x * 10503 / 65536 = h * 41 + (l * 41 + h * 7 + l * 7 / 256) / 256, each division rounded down. The division and
+ * 16-bit multiply it replaces cost some 400 states a sample of a moving light sensor (issue 21). */
+static s16 percent(u16 x)
+{
+    u8 l = (u8)x, h = (u8)(x >> 8);
+
+    return (s16)((u16)h * 41u + (((u16)l * 41u + (u16)h * 7u + (((u16)l * 7u) >> 8)) >> 8));
+}
+
 /* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
 static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
 {
     s16 v;
 
     if (mode == SENSOR_MODE_PERCENT)
-        return raw < PERCENT_FULL_BELOW ? 100 : (s16)((raw ^ 1023u) * 25u / 156u); /* 1023 - raw */
+        return raw < PERCENT_FULL_BELOW ? 100 : percent(raw ^ 1023u); /* 1023 - raw */
     if (raw < TEMP_LOW || raw > TEMP_HIGH)
         return SENSOR_TEMP_INVALID;
     v = celsius(raw);
@@ -222,11 +234,15 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
     /* A late sample (newer ones wait behind it: the brick fell behind) keeps its value and rotation step, but its
      * events are told only of the newest, which is worked out in full for them: an overloaded brick evaluates its
      * events less often and loses no rotation step (issue 21). */
-    if (s->watched) {
-        if (b->sensor[0].late)
-            s->quiet = SENSOR_MOVING;
-        else /* events_input(), with the input at hand */
+    if (s->watched && (v < s->lo || v > s->hi)) {
+        if (b->sensor[0].late) {
+            events_look_again(b);
+        } else {
+            /* Something may happen to the events (events_input(), with the input at hand); then lo ... hi is
+             * where nothing more can. */
             events_evaluate(b, s->watched, EVENTS_KEY(s->number));
+            events_window(b, s, EVENTS_KEY(s->number));
+        }
     }
 }
 

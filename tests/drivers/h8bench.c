@@ -240,11 +240,11 @@ static int whole_image(const char *image, const char *nm, unsigned busy, int swa
     w->steps = w->turned = 0;
     if (ld->changing) {                /* the rotation sensor's count against the steps it made */
         uint8_t poll[3] = { 0x12, 9, 0 }, reply[3];
-        m->ad_input = NULL;
+        m->ad_input = NULL;            /* the sensor stops here: the steps it made, then the count it shows */
+        w->steps = (int)((m->h.states - stim_from + H8M_MS / 2) / H8M_MS);
         if (h8m_transact(m, poll, sizeof poll, reply, 3, NULL))
             goto failed;
         w->turned = (int16_t)(reply[1] | reply[2] << 8);
-        w->steps = (int)((m->h.states - stim_from + H8M_MS / 2) / H8M_MS);
     }
     if (x1 <= 0 || x2 <= x1) {
         fprintf(stderr, "h8bench: x was %d, then %d\n", x1, x2);
