@@ -217,7 +217,7 @@ static unsigned running_tasks(const struct rcx *vm)
 /* One simulated millisecond of one brick. */
 static void step(struct sim *s, struct sim_brick *b)
 {
-    unsigned i, n, cost, budget;
+    unsigned n, cost, budget;
 
     if (b->mode == SIM_ROM) {
         if (rom_tick(b))
@@ -227,8 +227,7 @@ static void step(struct sim *s, struct sim_brick *b)
     if (b->mode != SIM_FIRMWARE)
         return;
     rt_tick(&b->k);
-    for (i = 0; i < 3; i++)
-        rt_sensor_sample(&b->k, (u8)i, b->raw[i]);
+    rt_sensor_scan(&b->k, b->raw);
     if (s->rate) {
         rt_run(&b->k, (u16)s->rate);
         return;

@@ -35,8 +35,3 @@ u16 rt_run(struct rcx_brick *k, u16 budget)
 }
 
 /* rt_ir_byte() is in src/ir.c; rt_battery() and rt_button() are inline in src/runtime.h. */
-
-void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10)
-{
-    sensor_sample(&k->vm, input, raw10);
-}

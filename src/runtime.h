@@ -73,18 +73,17 @@ u16 rt_run(struct rcx_brick *k, u16 budget);
 /* A byte received on the IR link; `error` non-zero for a parity/framing/overrun error. */
 void rt_ir_byte(struct rcx_brick *k, u8 byte, u8 error);
 
-/* A 10-bit A/D sample of input 0-2, every 1 ms. */
-void rt_sensor_sample(struct rcx_brick *k, u8 input, u16 raw10);
+/* 10-bit A/D samples of the three inputs (raw10[0] of input 1), every 1 ms; then rt_sensors_resting() tells whether
+ * another scan equal to it would change nothing. */
+#define rt_sensor_scan(k, raw10) sensor_scan(&(k)->vm, raw10)
 /* Nonzero: the samples given from now on are late, newer ones wait behind them (the port fell behind); their values
  * and rotation steps are kept, their events told only of the newest (vm/sensors.c). */
 static inline void rt_sensors_late(struct rcx_brick *k, u8 late)
 {
     k->vm.sensor[0].late = late;
 }
-/* After samples of all inputs: nonzero when another scan equal to them would change nothing, which
- * rt_sensors_resting then tells until that may no longer be so (vm/sensors.h, sensors_at_rest). A port may skip
- * such scans. */
-#define rt_sensors_at_rest(k) sensors_at_rest(&(k)->vm)
+/* Nonzero when another scan equal to the last would change nothing, until that may no longer be so (vm/sensors.h,
+ * sensors_at_rest): a port may skip such scans. */
 #define rt_sensors_resting(k) ((k)->vm.sensors_rest)
 /* The battery in millivolts, whenever measured. Inline, as rt_button() below: a call the port may as well make
  * itself. */

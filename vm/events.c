@@ -404,8 +404,9 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
         l = e->lower;
         u = e->upper;
         if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
-            l = 1;
-            u = 0;
+            lo = 1; /* no value: the rest need not be looked at */
+            hi = 0;
+            break;
         } else if (e->state == RCX_EVENT_STATE_HIGH) {
             l = u == 32767 ? u : (s16)(u + 1);
             u = 32767;

@@ -202,6 +202,12 @@ s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the 
 
 /* Input n's processed value or boolean may have changed. Inline: the sensor engine, which has the input at hand,
  * calls events_evaluate() itself (vm/sensors.c), and the image needs no function of its own for this. */
+/* A new 10-bit sample of input n (vm/sensors.h). */
+static inline void sensor_sample(struct rcx *b, u8 n, u16 raw)
+{
+    if (n < RCX_SENSORS)
+        sensor_feed(b, &b->sensor[n], raw);
+}
 static inline void events_input(struct rcx *b, u8 n)
 {
     if (n < RCX_SENSORS)

@@ -108,8 +108,10 @@ struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode)
 {
     struct rcx_sensor *s = sensor_clear(b, n);
 
-    if (s)
+    if (s) {
         s->mode = mode;
+        s->phase = rotation_phase(s->raw);
+    }
     return s;
 }
 
@@ -122,11 +124,11 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
         return;
     s->type = type;
     s->boolean = 0;
-    /* A new type starts with no history: the change rate and the rotation phase begin from the latest sample. */
+    /* A new type starts with no history: the change rate (and the rotation phase, sensor_set_mode) begin from the
+     * latest sample. */
     raw = s->raw;
     s->past[0] = raw;
     s->past[1] = raw;
-    s->phase = rotation_phase(raw);
     /* Light and rotation sensors are active: they take their power from the input (rcx-hardware.md §3.3). */
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
@@ -182,61 +184,73 @@ static u8 boolean_of(const struct rcx_sensor *s, u16 raw, u16 then)
     return s->boolean;
 }
 
-/* The phase follows every valid sample whatever the mode (a later SetSensorMode to angle counts on from it); in angle
- * mode the steps are counted into the value. */
-static void turn(struct rcx_sensor *s, u16 raw)
+/* Angle mode: the count v moved by the step from the last valid sample's phase to raw's. The phase is followed in
+ * this mode only (a light sensor's samples are spared the work); SetSensorMode and SetSensorType take it afresh from
+ * the last sample. */
+static s16 turn(struct rcx_sensor *s, s16 v, u16 raw)
 {
     u8 phase = rotation_phase(raw), was = s->phase, d = (u8)((phase - was) & 3);
 
     if (phase == PHASE_NONE)
-        return;
+        return v;
     s->phase = phase;
     /* The change of phase (mod 4) since the last valid sample: 1 a step up, 3 a step down; a jump of two phases cannot
      * tell the direction and counts nothing. */
-    if (was != PHASE_NONE && s->mode >= SENSOR_MODE_ANGLE && d & 1)
-        s->value = (s16)(s->value + 2 - d);
+    if (was != PHASE_NONE && d & 1)
+        v = (s16)(v + 2 - d);
+    return v;
 }
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
 
-/* A sample that may change something (| SENSOR_STEADY, as sensor_sample() had it). Conversions cost divisions, which
- * the brick does in software, but a sample comes here only when raw changed or has not been the same for
- * SENSOR_DT_MS samples yet, so there is nothing to gain in skipping them. */
-static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s, u16 raw)
+/* A sample is worked out only when raw changed or has not been the same for SENSOR_DT_MS samples yet (rcx_sensor.quiet):
+ * one that may change something. */
+void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
     s16 v;
-    u16 then = s->past[0], last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
+    u16 then, last;
 
-    s->quiet = raw; /* | SENSOR_STEADY, as sensor_sample() passes it */
+    raw |= SENSOR_STEADY;
+    if (raw == s->quiet)
+        return; /* steady: see sensor_scan() */
+    then = s->past[0];
+    last = s->raw; /* the samples of the last SENSOR_DT_MS ms, oldest first */
+    s->quiet = raw;
     raw &= 0x3FF;
     s->past[0] = s->past[1];
     s->past[1] = last;
     if (raw != last || raw != s->past[0])
         s->quiet = SENSOR_MOVING;
-    turn(s, raw);
     was = s->boolean;
     s->boolean = boolean_of(s, raw, then);
     v = s->value;
     mode = (u8)(s->mode & ~SENSOR_SLOPE);
-    if (mode == SENSOR_MODE_RAW)
+    /* The modes of sensors that move all the time (light, rotation) first. */
+    if (mode >= SENSOR_MODE_PERCENT) {
+        if (mode != SENSOR_MODE_ANGLE)
+            v = converted(mode, raw);
+        else
+            v = turn(s, v, raw);
+    } else if (mode == SENSOR_MODE_RAW) {
         v = (s16)raw;
-    else if (mode == SENSOR_MODE_BOOL)
+    } else if (mode == SENSOR_MODE_BOOL) {
         v = s->boolean;
-    else if (mode == SENSOR_MODE_TRANSITIONS)
+    } else if (mode == SENSOR_MODE_TRANSITIONS) {
         v = (s16)(v + (s->boolean ^ was)); /* booleans are 0 or 1 */
-    else if (mode == SENSOR_MODE_PERIODS)
+    } else {                               /* periods */
         v = (s16)(v + (was > s->boolean)); /* a period ends at each 1 -> 0 */
-    else if (mode != SENSOR_MODE_ANGLE) /* (counted by turn()) */
-        v = converted(mode, raw);
+    }
     s->value = v;
     s->raw = raw;
     /* A late sample (newer ones wait behind it: the brick fell behind) keeps its value and rotation step, but its
      * events are told only of the newest, which is worked out in full for them: an overloaded brick evaluates its
      * events less often and loses no rotation step (issue 21). */
     if (s->watched && (v < s->lo || v > s->hi)) {
-        if (b->sensor[0].late) {
-            events_look_again(b);
+        if (b->sensor[0].late) { /* the events look at the next sample, whatever it gives */
+            s->quiet = SENSOR_MOVING;
+            s->lo = 1;
+            s->hi = 0;
         } else {
             /* Something may happen to the events (events_input(), with the input at hand); then lo ... hi is
              * where nothing more can. */
@@ -248,17 +262,17 @@ static __attribute__((noinline)) void sample(struct rcx *b, struct rcx_sensor *s
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
  * the boolean and the value are the ones the last of them gave (the boolean of a steady signal is a function of
- * the level and of the boolean before, and that function keeps its own result). */
-void sensor_sample(struct rcx *b, u8 n, u16 raw)
+ * the level and of the boolean before, and that function keeps its own result): sensor_feed() returns at once. One
+ * call for the three inputs, as the brick's scan gives them (issue 21: a call a sample, through the runtime, cost some
+ * 200 states). */
+void sensor_scan(struct rcx *b, const u16 *raw)
 {
-    struct rcx_sensor *s;
+    struct rcx_sensor *s = b->sensor;
 
-    raw |= SENSOR_STEADY;
-    if (n >= RCX_SENSORS)
-        return;
-    s = &b->sensor[n];
-    if (raw != s->quiet)
-        sample(b, s, raw);
+    do
+        sensor_feed(b, s, *raw++);
+    while (++s < b->sensor + RCX_SENSORS);
+    sensors_at_rest(b);
 }
 
 RCX_STATIC_ASSERT(moving_is_0, SENSOR_MOVING == 0 && RCX_SENSORS == 3);

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MPL-2.0 */
 /*
  * Sensor processing (spec pp. 7, 30, 52-53, 102; sources 9-13; rcx-hardware.md §3.3): types, modes, slopes and the
- * conversions from raw samples. Raw samples arrive once per millisecond per input through sensor_sample().
+ * conversions from raw samples. Raw samples arrive once per millisecond per input through sensor_scan().
  */
 #ifndef RCX_SENSORS_H
 #define RCX_SENSORS_H
@@ -53,16 +53,18 @@ struct rcx_sensor {
     u8 watched;     /* how many events watch this input (kept by vm/events.c) ... */
     u8 number;      /* ... which input it is (set by vm/events.c once one does) ... */
     u8 others;      /* ... and, in sensor[0], how many watch a timer, the message or a counter */
-    u8 late;        /* in sensor[0]: the samples being fed are late, newer ones wait (sensor_sample) */
+    u8 late;        /* in sensor[0]: the samples being fed are late, newer ones wait (sensor_feed) */
 };
 
 void sensor_set_type(struct rcx *b, u8 n, u8 type); /* SetSensorType: type, its default mode, state reset */
 struct rcx_sensor *sensor_set_mode(struct rcx *b, u8 n, u8 mode); /* SetSensorMode: value from 0; as sensor_clear */
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n); /* ClearSensorValue; input n, NULL when there is none */
-void sensor_sample(struct rcx *b, u8 n, u16 raw);    /* a new 10-bit sample of input n, every 1 ms */
+/* New 10-bit samples of the three inputs (raw[0] of input 1 ...), every 1 ms; then sensors_at_rest(). */
+void sensor_scan(struct rcx *b, const u16 *raw);
+void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw); /* one of them; sensor_sample(): of input n */
 /* Nonzero (and so rcx.sensors_rest, until a type, mode, value or an event changes) when a sample of every input
  * equal to its last one would change nothing: all steady (rcx_sensor.quiet; the event engine marks an input moving
- * when its events want a sample). A port that sees its inputs unchanged may then skip sensor_sample() for them. */
+ * when its events want a sample). A port that sees its inputs unchanged may then skip sensor_scan() for them. */
 u8 sensors_at_rest(struct rcx *b);
 
 #endif

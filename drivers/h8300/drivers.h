@@ -12,7 +12,7 @@ struct rcx_brick;
 /* main.c: what the tick interrupt (irq.s) shares with the main loop, and the button debouncer. */
 extern struct hw_motors drv_motors; /* hal_motor writes, the tick interrupt reads */
 extern u8 drv_sensor_power RCX_EIGHT; /* P6 bits of the inputs with active sensors */
-#define DRV_AD_SLOTS 4 /* scans the main loop may fall behind before samples are lost */
+#define DRV_AD_SLOTS 8 /* scans the main loop may fall behind before samples are lost */
 #define DRV_AD_SLOT 8  /* bytes of a scan: drv_ad_done counts in these, so that it is an offset in drv_ad_slot */
 extern volatile u16 drv_ad_slot[DRV_AD_SLOTS][DRV_AD_SLOT / 2]; /* ADDRA-ADDRD (inputs 2, 1, 0, the battery) as
                                                                   the registers hold them (raw10 << 6) */

@@ -75,60 +75,7 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_motors+8:16
 	mov.b	@0xe8:8,r0l		; ADCSR: B3 = ADF, ADST, SCAN, AN0-AN3: the scan runs, a pass made
 	mov.b	@_drv_sensor_power:8,r0h ; the active inputs: bit n for ANn, as their power bits in P6DR
-	bne	.Lactive
-	cmp.b	#0xb3,r0l
-	bne	.Lrestart
-.Lscan:
-	sub.b	r1h,r1h
-	mov.b	@_drv_ad_done:8,r1l
-	mov.b	@_drv_ad_seen:8,r2l
-	cmp.b	r1l,r2l
-	bne	.Lstore			; the main loop has scans to feed yet
-	mov.b	@_drv_sensors_rest:16,r2l
-	beq	.Lstore
-	add.b	#0xf8,r1l		; the slot before: - DRV_AD_SLOT
-	and.b	#0x1f,r1l		; DRV_AD_SLOTS * DRV_AD_SLOT - 1
-	mov.w	@0xffe0:16,r2
-	mov.w	@(_drv_ad_slot,r1),r3
-	cmp.w	r2,r3
-	bne	.Lstore
-	mov.w	@0xffe2:16,r2
-	mov.w	@(_drv_ad_slot+2,r1),r3
-	cmp.w	r2,r3
-	bne	.Lstore
-	mov.w	@0xffe4:16,r2
-	mov.w	@(_drv_ad_slot+4,r1),r3
-	cmp.w	r2,r3
-	beq	.Lstored		; the same as the scan before
-.Lstore:				; ADDRA-ADDRC into slot drv_ad_done / 8 of drv_ad_slot
-	mov.b	@_drv_ad_done:8,r1l
-	and.b	#0x1f,r1l
-	mov.w	@0xffe0:16,r2
-	mov.w	r2,@(_drv_ad_slot,r1)
-	mov.w	@0xffe2:16,r2
-	mov.w	r2,@(_drv_ad_slot+2,r1)
-	mov.w	@0xffe4:16,r2
-	mov.w	r2,@(_drv_ad_slot+4,r1)
-	mov.b	@_drv_ad_done:8,r1l
-	add.b	#8,r1l			; DRV_AD_SLOT
-	mov.b	r1l,@_drv_ad_done:8
-	mov.b	#1,r1l
-	mov.b	r1l,@_drv_woken:8	; the main loop has a scan to feed
-	mov.b	r1l,@_drv_yield:16
-.Lstored:
-	mov.b	r0h,r0h
-	beq	.Lreturn
-.Lrestart:				; active inputs (the scan was stopped for them), or no scan running with a pass made
-	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3 (ADF, if read as 1, cleared)
-	mov.b	r1l,@0xe8:8
-.Lreturn:
-	mov.w	@r7+,r3
-	mov.w	@r7+,r2
-	mov.w	@r7+,r1
-	mov.w	@r7+,r0
-_rcx_irq_rts:
-	rts
-
+	beq	.Lpassive
 .Lactive:
 	sub.b	r1l,r1l
 	mov.b	r1l,@0xe8:8		; ADCSR 0: the scan stops
@@ -148,9 +95,63 @@ _rcx_irq_rts:
 2:	inc	r1h
 	cmp.b	#0x23,r1h
 	bne	.Lnext
+.Lpassive:
 	cmp.b	#0xb3,r0l		; the scan had made a pass: the passive inputs' results are there
 	bne	.Lrestart
-	jmp	@.Lscan
+.Lscan:
+	sub.b	r1h,r1h
+	mov.b	@_drv_ad_done:8,r1l
+	mov.b	@_drv_ad_seen:8,r2l
+	cmp.b	r1l,r2l
+	bne	.Lstore			; the main loop has scans to feed yet
+	mov.b	@_drv_sensors_rest:16,r2l
+	beq	.Lstore
+	add.b	#0xf8,r1l		; the slot before: - DRV_AD_SLOT
+	and.b	#0x3f,r1l		; DRV_AD_SLOTS * DRV_AD_SLOT - 1
+	mov.w	@0xffe0:16,r2
+	mov.w	@(_drv_ad_slot,r1),r3
+	cmp.w	r2,r3
+	bne	.Lstore
+	mov.w	@0xffe2:16,r2
+	mov.w	@(_drv_ad_slot+2,r1),r3
+	cmp.w	r2,r3
+	bne	.Lstore
+	mov.w	@0xffe4:16,r2
+	mov.w	@(_drv_ad_slot+4,r1),r3
+	cmp.w	r2,r3
+	beq	.Lstored		; the same as the scan before
+.Lstore:				; ADDRA-ADDRC into slot drv_ad_done / 8 of drv_ad_slot
+	mov.b	@_drv_ad_done:8,r1l
+	and.b	#0x3f,r1l
+	mov.w	@0xffe0:16,r2
+	mov.w	r2,@(_drv_ad_slot,r1)
+	mov.w	@0xffe2:16,r2
+	mov.w	r2,@(_drv_ad_slot+2,r1)
+	mov.w	@0xffe4:16,r2
+	mov.w	r2,@(_drv_ad_slot+4,r1)
+	mov.b	@_drv_ad_done:8,r1l
+	add.b	#8,r1l			; DRV_AD_SLOT
+	mov.b	r1l,@_drv_ad_done:8
+	mov.b	@_drv_ad_seen:8,r2l
+	sub.b	r2l,r1l
+	cmp.b	#8,r1l			; one scan waits: the run (or the sleep) goes on, it is fed with the next
+	bls	.Lstored
+	mov.b	#1,r1l
+	mov.b	r1l,@_drv_woken:8	; the main loop has scans to feed
+	mov.b	r1l,@_drv_yield:16
+.Lstored:
+	mov.b	r0h,r0h
+	beq	.Lreturn
+.Lrestart:				; active inputs (the scan was stopped for them), or no scan running with a pass made
+	mov.b	#0x33,r1l		; ADST, SCAN, AN0-AN3 (ADF, if read as 1, cleared)
+	mov.b	r1l,@0xe8:8
+.Lreturn:
+	mov.w	@r7+,r3
+	mov.w	@r7+,r2
+	mov.w	@r7+,r1
+	mov.w	@r7+,r0
+_rcx_irq_rts:
+	rts
 
 _rcx_sci_irq:				; SCI receive error, byte received, TDR empty, sent (FDB4-FDBA)
 	mov.w	r0,@-r7

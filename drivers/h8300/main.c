@@ -50,7 +50,7 @@ static u16 battery_sum RCX_ONCHIP;
 int main(void) __attribute__((OS_Task));
 
 /* What irq.s takes for granted. */
-RCX_STATIC_ASSERT(slots_in_a_byte, DRV_AD_SLOTS * DRV_AD_SLOT == 0x20 && DRV_AD_SLOT == 8);
+RCX_STATIC_ASSERT(slots_in_a_byte, DRV_AD_SLOTS * DRV_AD_SLOT == 0x40 && DRV_AD_SLOT == 8);
 RCX_STATIC_ASSERT(phase_after_the_pattern, offsetof(struct hw_motors, phase) == 8);
 RCX_STATIC_ASSERT(what_needs_the_clock_is_bytes, sizeof(((struct rcx *)0)->sound.count) == 1 &&
                   sizeof(((struct rcx *)0)->out.pause) == 3 && sizeof(((struct rcx *)0)->remote.tx_len) == 1);
@@ -85,7 +85,7 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
-RCX_HIGH_CODE void drv_wait_ms(u8 ms)
+void drv_wait_ms(u8 ms)
 {
     do {
         while (!(FRT_TCSR & FRT_TCSR_OCFA))
@@ -105,40 +105,47 @@ static inline u16 ad_raw10(u16 addr)
 }
 
 /*
- * The oldest scan not yet fed, as one sample per input. One per call: the main loop feeds scans until a tick comes,
- * never until the ring is empty, since the interrupt stores a scan every millisecond while an input moves, and were
- * feeding one to take longer, such a loop would never end (issue 21). A scan with newer ones behind it is fed late
- * (rt_sensors_late): its values and rotation steps count, its events hear only of the newest, so the ring empties
- * fast. A scan the interrupt did not store (see irq.s) was one the runtime said would change nothing
- * (rt_sensors_at_rest).
+ * The oldest scan not yet fed, as one sample per input; 0 when it is the pass's last (drv_ad_done was `until` when
+ * the pass began). One per call: the main loop feeds the scans there when the pass began, not until the ring is empty,
+ * since the interrupt stores a scan every millisecond while an input moves, and were feeding one to take longer, such
+ * a loop would never end (issue 21). A scan with newer ones behind it in the pass is fed late (rt_sensors_late): its
+ * values and rotation steps count, its events hear only of the pass's last, so the ring empties fast. A scan the
+ * interrupt did not store (see irq.s) was one the runtime said would change nothing (rt_sensors_resting).
  */
-static RCX_HIGH_CODE __attribute__((noinline)) void feed_scan(void)
+static RCX_HIGH_CODE __attribute__((noinline)) u8 feed_scan(u8 until)
 {
     static u16 s[3] RCX_ONCHIP; /* the scan being fed, copied out of reach of the interrupt */
     u16 *p;
-    u8 i, seen = drv_ad_seen, done;
+    u8 i, seen = drv_ad_seen, done, late;
     const volatile u16 *slot;
 
-    /* With the interrupt held off, every slot may be read: the one it would rewrite next too (all four scans kept),
+    /* With the interrupt held off, every slot may be read: the one it would rewrite next too (all eight scans kept),
      * and if it has rewritten the oldest already, that one is skipped. */
     h8_irq_disable();
     done = drv_ad_done;
     if ((u8)(done - seen) > DRV_AD_SLOTS * DRV_AD_SLOT)
         seen = (u8)(done - DRV_AD_SLOTS * DRV_AD_SLOT);
     slot = (const volatile u16 *)((const volatile u8 *)drv_ad_slot + (seen & (DRV_AD_SLOTS * DRV_AD_SLOT - 1)));
-    rt_sensors_late(&brick, (u8)(done - seen - DRV_AD_SLOT)); /* non-zero: newer scans wait, events hear of those */
-    /* Input i is channel 2 - i (hw_ad_channel): copied in reverse, then read forward. */
+    /* Non-zero: newer scans of the pass wait, the events hear of the last (which may have been rewritten: then this
+     * one is the last). */
+    late = (u8)(until - seen - DRV_AD_SLOT);
+    if (late > DRV_AD_SLOTS * DRV_AD_SLOT)
+        late = 0;
+    rt_sensors_late(&brick, late);
+    /* Input i is channel 2 - i (hw_ad_channel): copied in reverse. */
     p = s + 3;
     i = 3;
     do
         *--p = *slot++;
     while (--i);
     h8_irq_enable();
-    for (i = 0; i < 3; i++)
-        rt_sensor_sample(&brick, i, ad_raw10(*p++));
-    rt_sensors_at_rest(&brick);
+    do
+        *p = ad_raw10(*p);
+    while (++p < s + 3);
+    rt_sensor_scan(&brick, s);
     /* Only now: the interrupt compares a scan with this one only once it has been fed. */
     drv_ad_seen = (u8)(seen + DRV_AD_SLOT);
+    return late;
 }
 
 /* The battery: averaged over 8 samples, steadier, and one conversion to millivolts instead of many; a sample every
@@ -228,18 +235,17 @@ int main(void)
             rt_skip(&brick, i);
             seen = (u8)(seen + i);
         }
-        /* The scans waiting, until a tick comes (so at least one, and one only if it costs a millisecond or
-         * more), then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events, the display's
-         * frame every other step) has a pass of its own, without scans: the two costliest parts of a pass are never
-         * added up. */
+        /* The scans waiting when the pass began, all of them: the last worked out in full, those before it late,
+         * which costs them their events' evaluation (the events hear of the last), so that a pass is bounded (at
+         * most DRV_AD_SLOTS scans, all but one cheap) and the ring empties, however costly the events: no rotation
+         * step is lost. Then the milliseconds owed. The millisecond that ends a 10 ms step (timers, events, the
+         * display's frame every other step) has a pass of its own, without scans: the two costliest parts of a pass
+         * are never added up. */
         step = seen != drv_ms_ticks && brick.vm.ms == 9;
         if (!step) {
-            i = drv_ms_ticks;
-            while (drv_ad_seen != drv_ad_done) {
-                feed_scan();
-                if (drv_ms_ticks != i)
-                    break;
-            }
+            i = drv_ad_done;
+            while (drv_ad_seen != drv_ad_done && feed_scan(i))
+                ;
         }
         for (i = 0; i < TICKS_PER_PASS && seen != drv_ms_ticks; i++) {
             if (brick.vm.ms == 9 && !step) /* a step's end, in a pass that may have fed scans or ticked */

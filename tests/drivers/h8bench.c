@@ -161,7 +161,7 @@ static int load_setup(struct h8machine *m, const struct load *ld)
             return -1;
     }
     if (ld->changing) {
-        stim_from = m->h.states + H8M_MS / 2;
+        stim_from = m->tick_at + H8M_MS / 2; /* its steps half way between two ticks, as the stimulus says */
         m->ad_input = stimulus;
     }
     return 0;
@@ -315,8 +315,9 @@ int main(int argc, char **argv)
     samples = 0;
     for (i = 0; i < 100; i++) {
         tick += timed("_vm_tick", brick, 0) + timed("_ui_tick", brick, 0);
-        samples += timed("_rt_sensor_sample", brick, 0) + timed("_rt_sensor_sample", brick, 1)
-                 + timed("_rt_sensor_sample", brick, 2);
+        h.mem[REPLY] = h.mem[REPLY + 2] = h.mem[REPLY + 4] = 0x03; /* three inputs at 1023: nothing connected */
+        h.mem[REPLY + 1] = h.mem[REPLY + 3] = h.mem[REPLY + 5] = 0xFF;
+        samples += timed("_sensor_scan", brick, REPLY);
         before = h.states; /* the buttons' pins looked at, a millisecond later each time */
         h8_run(&h, "_hw_debounce", H8_SCRATCH, 0, (uint16_t)i, NULL, 0);
         samples += h.states - before;

@@ -395,7 +395,7 @@ static void scan_results(uint16_t base)
 /* Slot n of the A/D ring holds the scan of scan_results(base) (the registers in their order). */
 static void assert_slot(unsigned n, uint16_t base)
 {
-    uint16_t slot = (uint16_t)(var("_drv_ad_slot") + 8 * (n & 3));
+    uint16_t slot = (uint16_t)(var("_drv_ad_slot") + 8 * (n & 7)); /* DRV_AD_SLOTS */
     for (unsigned i = 0; i < 3; i++) /* the inputs: the main loop reads the battery's register itself */
         assert_int_equal(h8_read16(&h, (uint16_t)(slot + 2 * i)), (uint16_t)((base + 100 * i) << 6));
 }
