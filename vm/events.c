@@ -141,8 +141,7 @@ void events_look_again(struct rcx *b)
 
     do {
         s->quiet = SENSOR_MOVING;
-        s->lo = 1; /* (empty) */
-        s->hi = 0;
+        s->hi = -32768; /* no value between lo and hi */
     } while (++s < b->sensor + RCX_SENSORS);
     b->sensors_rest = 0;
 }
@@ -388,11 +387,13 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
 }
 
 /* After an evaluation of input `in`'s events (KEY `key`): the values that leave each of them in its state with no
- * hysteresis, which only widens the range being left (LOW below lower, NORMAL from lower to upper, HIGH above upper).
- * While the value stays there, looking at the events changes nothing (click timing is judged when a state changes,
- * and a boolean's edge fires only an event of types 0-7), so the sensor engine does not look (vm/sensors.c). An
- * event of types 0-7, or one calibrating or not yet classified, leaves no value: it looks at every sample. A pass of
- * its own rather than in events_evaluate(): there it would cost more bytes than here, in the registers it takes. */
+ * hysteresis, which only widens the range being left (LOW below lower, NORMAL from lower to upper, HIGH above upper),
+ * as bounds not included. While the value stays between them, looking at the events changes nothing (click timing
+ * is judged when a state changes, and a boolean's edge fires only an event of types 0-7), so the sensor engine does not
+ * look (vm/sensors.c). An event of types 0-7, or one calibrating or not yet classified, leaves no value: it looks at
+ * every sample. A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a look
+ * at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
+ * than here, in the registers it took. */
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
 {
     struct rcx_event *e = b->event;
@@ -401,18 +402,22 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
     do {
         if (e->source != key)
             continue;
+        if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
+            hi = -32768; /* none: the rest need not be looked at */
+            break;
+        }
         l = e->lower;
         u = e->upper;
-        if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
-            lo = 1; /* no value: the rest need not be looked at */
-            hi = 0;
-            break;
-        } else if (e->state == RCX_EVENT_STATE_HIGH) {
-            l = u == 32767 ? u : (s16)(u + 1);
+        if (e->state == RCX_EVENT_STATE_HIGH) {
+            l = u;
             u = 32767;
         } else if (e->state == RCX_EVENT_STATE_LOW) {
-            u = l == -32768 ? l : (s16)(l - 1);
+            u = l;
             l = -32768;
+        } else {
+            l = (s16)(l - 1);
+            if (u != 32767) /* the upper limit of many a mode (counts, angle): not to be lost */
+                u = (s16)(u + 1);
         }
         if (l > lo)
             lo = l;

@@ -6,7 +6,7 @@
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
  * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input, and only when
- * the value left lo ... hi (vm/events.c events_window()): an event whose input did not move, or moved where nothing
+ * the value is no longer between lo and hi (vm/events.c events_window()): an event whose input did not move, or moved where nothing
  * can happen to it, costs nothing, and a still input is at rest (sensors_at_rest()) like one no event watches. The
  * event engine marks an input moving when its events want the next sample whatever it gives (vm/events.c).
  */
@@ -246,14 +246,13 @@ void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
     /* A late sample (newer ones wait behind it: the brick fell behind) keeps its value and rotation step, but its
      * events are told only of the newest, which is worked out in full for them: an overloaded brick evaluates its
      * events less often and loses no rotation step (issue 21). */
-    if (s->watched && (v < s->lo || v > s->hi)) {
+    if (s->watched && (v <= s->lo || v >= s->hi)) {
         if (b->sensor[0].late) { /* the events look at the next sample, whatever it gives */
             s->quiet = SENSOR_MOVING;
-            s->lo = 1;
-            s->hi = 0;
+            s->hi = -32768;
         } else {
-            /* Something may happen to the events (events_input(), with the input at hand); then lo ... hi is
-             * where nothing more can. */
+            /* Something may happen to the events (events_input(), with the input at hand); then between lo and
+             * hi nothing more can. */
             events_evaluate(b, s->watched, EVENTS_KEY(s->number));
             events_window(b, s, EVENTS_KEY(s->number));
         }

@@ -44,8 +44,8 @@ struct rcx_sensor {
     s16 value;      /* source 9 */
     u16 raw;        /* source 12: last 10-bit sample, the newest of the change rate's history ... */
     u16 past[SENSOR_DT_MS - 1]; /* ... and the ones before it, oldest first */
-    s16 lo, hi;     /* while the value stays in lo ... hi, the events that watch the input stay as they are and are
-                     * not looked at (vm/events.c; lo > hi: they look at the next sample) */
+    s16 lo, hi;     /* while the value stays above lo and below hi, the events that watch the input stay as they
+                     * are and are not looked at (vm/events.c events_window(); hi -32768: they look at the next) */
     u8 type;        /* source 10 */
     u8 mode;        /* source 11 */
     u8 boolean;     /* source 13 */

@@ -85,7 +85,7 @@ RCX_HIGH_CODE void drv_tick_start(u8 irq)
 }
 
 /* For use with the tick interrupt off (power-off and wake-up): each compare match is one millisecond. */
-void drv_wait_ms(u8 ms)
+RCX_HIGH_CODE void drv_wait_ms(u8 ms)
 {
     do {
         while (!(FRT_TCSR & FRT_TCSR_OCFA))

@@ -297,6 +297,27 @@ static void a_value_moving_inside_the_thresholds_costs_nothing(void **state)
     brick_free(b);
 }
 
+/* The same with the thresholds SetEvent gives an angle (0 and 32767): a rotation sensor counting up is not looked at
+ * while it stays inside them. */
+static void a_rotation_counting_inside_its_default_thresholds_costs_nothing(void **state)
+{
+    static const u16 up[4] = { 860, 400, 640, 1000 }; /* rotation phases 1, 2, 3, 0: a step up each */
+    struct rcx *b = brick();
+    unsigned i;
+    (void)state;
+    sensor_mode(b, 1, 0xE0);                           /* input 2: angle */
+    set_event(b, 0, 1, NORMAL);
+    feed2(b, 1000);
+    feed2(b, 860);
+    assert_int_equal(poll(b, 25, 0), S_NORMAL);
+    b->event[0].state = S_HIGH;                        /* what an evaluation would put right */
+    for (i = 0; i < 400; i++)
+        feed2(b, up[(i + 1) % 4]);
+    assert_int_equal(poll(b, 9, 1), 401);
+    assert_int_equal(poll(b, 25, 0), S_HIGH);
+    brick_free(b);
+}
+
 /* A HIGH that holds up to the top of the range (upper 32767, its hysteresis taking it down to 0) and a LOW from the
  * bottom (lower -32768, up to -1): the input leaves them when the value crosses 0 or -1, though no value lies above
  * the one threshold or below the other. */
@@ -416,6 +437,7 @@ int main(void)
         cmocka_unit_test(a_still_input_is_calibrated),
         cmocka_unit_test(a_value_cleared_is_seen),
         cmocka_unit_test(a_value_moving_inside_the_thresholds_costs_nothing),
+        cmocka_unit_test(a_rotation_counting_inside_its_default_thresholds_costs_nothing),
         cmocka_unit_test(states_held_by_hysteresis_at_the_ends_of_the_range_end),
         cmocka_unit_test(still_inputs_change_nothing_an_evaluation_would),
     };
