@@ -134,7 +134,8 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_ad_done:8
 	mov.b	@_drv_ad_seen:8,r2l
 	sub.b	r2l,r1l
-	cmp.b	#8,r1l			; one scan waits: the run (or the sleep) goes on, it is fed with the next
+	cmp.b	#16,r1l			; one or two scans wait: the run (or the sleep) goes on, they are fed with the
+					; third, 3 ms on at most (firm0328 samples every 3 ms): a pass every 3 ms
 	bls	.Lstored
 	mov.b	#1,r1l
 	mov.b	r1l,@_drv_woken:8	; the main loop has scans to feed
