@@ -18,7 +18,9 @@
 ; (drv_motors, hw.h), and the inputs' A/D results go to the next slot of drv_ad_slot for the main loop (main.c: it
 ; must never run the runtime inside an interrupt), which reads the battery's from ADDRD itself. A scan equal to the
 ; last one is not stored when the main loop has fed everything and the runtime said that such a scan changes nothing
-; (rcx.sensors_rest, vm/sensors.h): nearly always, on an idle brick.
+; (rcx.sensors_rest, vm/sensors.h): nearly always, on an idle brick. The main loop is woken (and the tasks' run
+; ended) only once three scans wait: inputs that move every millisecond then cost it a pass every 3 ms, not every
+; one, and are worked out no later than firm0328 samples them (every 3 ms: reference-firmware.md). The ring holds 8.
 ;
 ; Passive inputs and the battery come from a scan of AN0-AN3 that runs on by itself: in scan mode the converter
 ; starts over after each pass (66 us) until ADST is cleared, each data register holding its channel's latest
@@ -134,8 +136,7 @@ _rcx_timer_irq:
 	mov.b	r1l,@_drv_ad_done:8
 	mov.b	@_drv_ad_seen:8,r2l
 	sub.b	r2l,r1l
-	cmp.b	#16,r1l			; one or two scans wait: the run (or the sleep) goes on, they are fed with the
-					; third, 3 ms on at most (firm0328 samples every 3 ms): a pass every 3 ms
+	cmp.b	#16,r1l			; one or two scans wait: the run (or the sleep) goes on
 	bls	.Lstored
 	mov.b	#1,r1l
 	mov.b	r1l,@_drv_woken:8	; the main loop has scans to feed
