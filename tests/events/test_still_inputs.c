@@ -27,6 +27,9 @@ static void feed(struct rcx *b, u16 raw, unsigned n)
     }
 }
 
+/* Rotation sensor levels, phases 0-3 (rcx-hardware.md 3.3): phase n + 1 after n is a step up. */
+static const u16 phase_raw[4] = { 1000, 860, 400, 640 };
+
 /* One millisecond of input 1 at `raw` (input 0 as it was, input 2 with nothing connected). */
 static void feed2(struct rcx *b, u16 raw)
 {
@@ -301,18 +304,17 @@ static void a_value_moving_inside_the_thresholds_costs_nothing(void **state)
  * while it stays inside them. */
 static void a_rotation_counting_inside_its_default_thresholds_costs_nothing(void **state)
 {
-    static const u16 up[4] = { 860, 400, 640, 1000 }; /* rotation phases 1, 2, 3, 0: a step up each */
     struct rcx *b = brick();
     unsigned i;
     (void)state;
     sensor_mode(b, 1, 0xE0);                           /* input 2: angle */
     set_event(b, 0, 1, NORMAL);
-    feed2(b, 1000);
-    feed2(b, 860);
+    for (i = 0; i < 2; i++)
+        feed2(b, phase_raw[i]);                        /* 0, then 1 step */
     assert_int_equal(poll(b, 25, 0), S_NORMAL);
     b->event[0].state = S_HIGH;                        /* what an evaluation would put right */
-    for (i = 0; i < 400; i++)
-        feed2(b, up[(i + 1) % 4]);
+    for (i = 2; i < 402; i++)
+        feed2(b, phase_raw[i % 4]);
     assert_int_equal(poll(b, 9, 1), 401);
     assert_int_equal(poll(b, 25, 0), S_HIGH);
     brick_free(b);
@@ -323,7 +325,6 @@ static void a_rotation_counting_inside_its_default_thresholds_costs_nothing(void
  * the one threshold or below the other. */
 static void states_held_by_hysteresis_at_the_ends_of_the_range_end(void **state)
 {
-    static const u16 down[4] = { 640, 400, 860, 1000 }; /* rotation phases 3, 2, 1, 0: a step down each */
     struct rcx *b = brick();
     unsigned i;
     (void)state;
@@ -339,13 +340,13 @@ static void states_held_by_hysteresis_at_the_ends_of_the_range_end(void **state)
     sensor_mode(b, 1, 0xE0);                           /* input 2: angle, counted down to -8 */
     set_event(b, 1, 1, LOW);
     limits(b, 1, -5, 100, 0);
-    for (i = 0; i < 8; i++)
-        feed2(b, down[i % 4]);
+    for (i = 1; i <= 8; i++)
+        feed2(b, phase_raw[(8 - i) % 4]);             /* phases 3, 2, 1, 0, ...: a step down each */
     assert_int_equal(poll(b, 9, 1), -8);
     assert_int_equal(poll(b, 25, 1), S_LOW);
     limits(b, 1, -32768, 100, 32767);                  /* LOW holds while the value is below -1 */
-    for (i = 0; i < 7; i++)                            /* back up to -1, a step each sample */
-        feed2(b, down[3 - (i + 1) % 4]);
+    for (i = 1; i <= 7; i++)                           /* back up to -1, a step each sample */
+        feed2(b, phase_raw[i % 4]);
     assert_int_equal(poll(b, 9, 1), -1);
     assert_int_equal(poll(b, 25, 1), S_NORMAL);
     brick_free(b);
