@@ -141,6 +141,7 @@ void events_look_again(struct rcx *b)
 
     do {
         s->quiet = SENSOR_MOVING;
+        s->lo = 0;      /* (not EVENTS_WINDOW_NONE: worked out again) */
         s->hi = -32768; /* no value between lo and hi */
     } while (++s < b->sensor + RCX_SENSORS);
     b->sensors_rest = 0;
@@ -391,8 +392,9 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
  * as bounds not included. While the value stays between them, looking at the events changes nothing (click timing
  * is judged when a state changes, and a boolean's edge fires only an event of types 0-7), so the sensor engine does not
  * look (vm/sensors.c). An event of types 0-7, or one calibrating or not yet classified, leaves no value: it looks at
- * every sample. A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a look
- * at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
+ * every sample, and lo is then EVENTS_WINDOW_NONE: the sensor engine does not ask again until the events change
+ * (events_look_again()). A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a
+ * look at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
  * than here, in the registers it took. */
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
 {
@@ -403,7 +405,8 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
         if (e->source != key)
             continue;
         if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
-            hi = -32768; /* none: the rest need not be looked at */
+            lo = EVENTS_WINDOW_NONE; /* none: the rest need not be looked at */
+            hi = -32768;
             break;
         }
         l = e->lower;

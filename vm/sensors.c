@@ -254,7 +254,8 @@ void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
             /* Something may happen to the events (events_input(), with the input at hand); then between lo and
              * hi nothing more can. */
             events_evaluate(b, s->watched, EVENTS_KEY(s->number));
-            events_window(b, s, EVENTS_KEY(s->number));
+            if (s->lo != EVENTS_WINDOW_NONE) /* (an event watches every sample: it still does) */
+                events_window(b, s, EVENTS_KEY(s->number));
         }
     }
 }
