@@ -40,7 +40,9 @@ struct rcx_task *sched_stop(struct rcx *b, struct rcx_task *t)
 
 struct rcx_task *sched_stop_task(struct rcx *b, u8 n)
 {
-    return n < RCX_TASKS ? sched_stop(b, &b->task[n]) : NULL;
+    u8 size = sizeof(struct rcx_task); /* two byte variables: one mulxu, not a shift loop */
+
+    return n < RCX_TASKS ? sched_stop(b, (struct rcx_task *)(void *)((u8 *)b->task + (u16)(n * size))) : NULL;
 }
 
 /* One place keeps runmask in step with the states (a shift by a variable count is a loop on the H8/300: written
