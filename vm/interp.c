@@ -131,19 +131,23 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             to = OUTSIDE;
     }
 
-    switch (i) {                       /* (in the order that lets most cases end with a short branch, as measured) */
-    case C_ENTER:
-    case C_ENTER + 1:
-    case C_ACCESS:
+    /* The cases by ranges of i (a switch costs a 26-byte jump table): */
+    if (i >= C_END_OF_SUB) {
+        if (i != C_END_OF_SUB) {       /* not found: run by ops.c */
+            ops_exec(b, t, ins);
+            return;
+        }
+end:
+        end_of_code(b, t);
+        return;
+    }
+    if (i >= C_ENTER) {                /* C_ENTER, C_ENTER + 1, C_ACCESS (NOT_AN_OP is never found) */
         if ((s16)to < 0)
             goto stop;
         access_enter(b, t, ins, to);
-        break;
-    default:
-        ops_exec(b, t, ins);
-        break;
-    case C_CHECK_DO:
-    case C_CHECK_DO + 1: {
+        return;
+    }
+    if (i < C_CHECK_LOOP) {
         s16 a;
         u8 holds, rel;
         value = source_get(b, t, ins[2] & 0x3F, ins[5]);
@@ -151,34 +155,20 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         holds = a < value ? 1 : a == value ? 2 : 4;
         rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
         jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
-        break;
-    }
-    case C_CHECK_LOOP:
-    case C_CHECK_LOOP + 1:
+    } else if (i < C_JUMP) {           /* CheckLoop */
         if ((len = t->loop_depth) == 0)
-            break;                     /* no active loop level: ignored */
+            return;                    /* no active loop level: ignored */
         if (t->loop[len - 1] == 0) {
             t->loop_depth = (u8)(len - 1);
             jump = 1;
         } else {
             t->loop[len - 1]--;
         }
-        break;
-    case C_JUMP:
-    case C_JUMP + 1:
+    } else if (i < C_DEC) {
         jump = 1;
-        break;
-    case C_END_OF_SUB:
-    end:
-        end_of_code(b, t);
-        break;
-    case C_DEC:
-    case C_DEC + 1:
-        if ((var = var_ref(b, t, ins[1])) != NULL) {
-            *var = (s16)(u16)((u16)*var - 1u);
-            jump = *var < 0;
-        }
-        break;
+    } else if ((var = var_ref(b, t, ins[1])) != NULL) { /* DecVarJumpLTZero */
+        *var = (s16)(u16)((u16)*var - 1u);
+        jump = *var < 0;
     }
 
     if (!jump)
