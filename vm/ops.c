@@ -289,7 +289,7 @@ OP(op_user_view)
 }
 /* The event engine checks event numbers, sources and types itself (spec p. 70). */
 OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
-OP(op_calibrate)
+static RCX_HIGH_CODE void op_calibrate(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (the last room at F000) */
 {
     UNUSED_T;
     events_calibrate(b, ins); /* which reads the operands in nqc's order (vm/events.c) */
