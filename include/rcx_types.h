@@ -42,6 +42,14 @@ RCX_STATIC_ASSERT(u32_is_32_bits, sizeof(u32) == 4);
 #define RCX_SCRATCH
 #endif
 
+/* Code the brick runs at 0xF000, outside the program memory (section .hitext, linker/openrcx.ld; drivers/h8300/h8.h
+ * says the same for the drivers): for rarely run code, as far as the room there goes. */
+#ifdef __H8300__
+#define RCX_HIGH_CODE __attribute__((section(".hitext")))
+#else
+#define RCX_HIGH_CODE
+#endif
+
 /* Little-endian 16-bit operand at p (byte codes and IR packets are little-endian; the H8 is big-endian). */
 #define RCX_LE16(p) ((u16)((u16)(p)[0] | ((u16)(p)[1] << 8)))
 

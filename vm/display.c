@@ -59,14 +59,15 @@ static const u8 font[10] = { 0x7E, 0x0C, 0x37, 0x1F, 0x4D, 0x5B, 0x7B, 0x0E, 0x7
  */
 static u8 work[DISPLAY_BYTES] RCX_SCRATCH;
 
-/* Bit n of a byte. */
-static const u8 bit[8] = { 0x01, 0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80 };
-
 static void lit(u8 k)
 {
     u8 seg = segs[k];
 
-    work[seg >> 3] |= bit[seg & 7];
+#ifdef __H8300__ /* bset takes the bit number from a register's low three bits: no table of bits, no shift loop */
+    __asm__ __volatile__("bset\t%X1,@%T0" : : "r"(work + (seg >> 3)), "r"(seg) : "memory");
+#else
+    work[seg >> 3] |= (u8)(1u << (seg & 7));
+#endif
 }
 
 /* A glyph at the digit position whose segments start at segs[k] (k = position * DIGIT). */

@@ -70,8 +70,7 @@ static
 #endif
 __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const u16 *at)
 {
-    u16 pc = t->pc, room = (u16)(at[1] - at[0] - pc), to = 0; /* room: bytes from the opcode to the end of the code;
-                                                                 * to: a distance's destination, OUTSIDE if beyond it */
+    u16 pc = t->pc, size = (u16)(at[1] - at[0]), to; /* to: a distance's destination, OUTSIDE if beyond the code */
     const u8 *ins;
 #if RCX_SWAN
     const struct rcx_swan_row *sw;
@@ -80,13 +79,13 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     s16 value;
     s16 *var;
 
-    if ((s16)room <= 0)                /* the end of the code: as EndOfSub (offsets are below 0x8000) */
+    if (pc >= size)                    /* the end of the code: as EndOfSub */
         goto end;
     ins = b->arena + at[0] + pc;
 #if RCX_SWAN
     if ((sw = rcx_swan_find(ins[0])) != NULL) { /* all eight bits: a Swan opcode (vm/swan.c) */
         len = rcx_swan_params(sw);
-        if (room <= len)
+        if ((u16)(pc + len) >= size)
             goto stop;
         t->pc = (u16)(pc + 1 + len);
         swan_exec(b, t, ins, sw);
@@ -98,7 +97,7 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     len = (u8)((flags ? flags : op) & 7); /* as rcx_op_params(): unknown opcodes the nominal count */
     if (!flags && len >= 6)
         len = (u8)(len - 6);
-    if (room <= len)
+    if ((u16)(pc + len) >= size)
         goto stop;                     /* truncated instruction at the end of the code */
     t->pc = (u16)(pc + 1 + len);
     flags &= RCX_PROGRAM << 3 | RCX_DIRECT << 3; /* availability (bits 3-4), compared as a number */
@@ -111,8 +110,17 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
     op = (u8)(ins[0] & ~RCX_TOGGLE);   /* read again: fewer values kept up to here */
     for (i = 0; i < sizeof control && control[i] != op; i++)
         ;
-    if (i < C_END_OF_SUB) {
-        /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
+    /* The cases by ranges of i (a switch costs a 26-byte jump table); first the two without a distance. */
+    if (i >= C_END_OF_SUB) {
+        if (i != C_END_OF_SUB) {       /* not found: run by ops.c */
+            ops_exec(b, t, ins);
+            return;
+        }
+end:
+        end_of_code(b, t);
+        return;
+    }
+    {   /* The distance as a 16-bit two's complement added to its field's offset: a code object is shorter than
          * 0x8000 bytes, so a backward one past the start wraps to above its end, as does a forward one past the end
          * (none reaches 0x10000). Only CheckLoop's unsigned 16 bits could wrap around into the code: capped. */
         u8 field = dist_at[i >> 1];
@@ -127,23 +135,17 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
             d = 0x8000u;
         }
         to = (u16)(pc + field + d);    /* from the offset the distance counts from */
-        if (to > (u16)(pc + room))     /* the code's size */
+        if (to > size)
             to = OUTSIDE;
     }
 
-    switch (i) {                       /* (in the order that lets most cases end with a short branch, as measured) */
-    case C_ENTER:
-    case C_ENTER + 1:
-    case C_ACCESS:
+    if (i >= C_ENTER) {                /* C_ENTER, C_ENTER + 1, C_ACCESS (NOT_AN_OP is never found) */
         if ((s16)to < 0)
             goto stop;
         access_enter(b, t, ins, to);
-        break;
-    default:
-        ops_exec(b, t, ins);
-        break;
-    case C_CHECK_DO:
-    case C_CHECK_DO + 1: {
+        return;
+    }
+    if (i < C_CHECK_LOOP) {
         s16 a;
         u8 holds, rel;
         value = source_get(b, t, ins[2] & 0x3F, ins[5]);
@@ -151,34 +153,20 @@ __attribute__((noinline)) void run_slow(struct rcx *b, struct rcx_task *t, const
         holds = a < value ? 1 : a == value ? 2 : 4;
         rel = ins[1];                  /* the relation in bits 6-7: rotated into 0-1 (two rotates, not six shifts) */
         jump = !(relation[(u8)((u8)(rel << 2) | (u8)(rel >> 6)) & 3] & holds);
-        break;
-    }
-    case C_CHECK_LOOP:
-    case C_CHECK_LOOP + 1:
+    } else if (i < C_JUMP) {           /* CheckLoop */
         if ((len = t->loop_depth) == 0)
-            break;                     /* no active loop level: ignored */
+            return;                    /* no active loop level: ignored */
         if (t->loop[len - 1] == 0) {
             t->loop_depth = (u8)(len - 1);
             jump = 1;
         } else {
             t->loop[len - 1]--;
         }
-        break;
-    case C_JUMP:
-    case C_JUMP + 1:
+    } else if (i < C_DEC) {
         jump = 1;
-        break;
-    case C_END_OF_SUB:
-    end:
-        end_of_code(b, t);
-        break;
-    case C_DEC:
-    case C_DEC + 1:
-        if ((var = var_ref(b, t, ins[1])) != NULL) {
-            *var = (s16)(u16)((u16)*var - 1u);
-            jump = *var < 0;
-        }
-        break;
+    } else if ((var = var_ref(b, t, ins[1])) != NULL) { /* DecVarJumpLTZero */
+        *var = (s16)(u16)((u16)*var - 1u);
+        jump = *var < 0;
     }
 
     if (!jump)

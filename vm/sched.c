@@ -40,16 +40,36 @@ struct rcx_task *sched_stop(struct rcx *b, struct rcx_task *t)
 
 struct rcx_task *sched_stop_task(struct rcx *b, u8 n)
 {
-    return n < RCX_TASKS ? sched_stop(b, &b->task[n]) : NULL;
+    u8 size = sizeof(struct rcx_task); /* two byte variables: one mulxu, not a shift loop */
+
+    return n < RCX_TASKS ? sched_stop(b, (struct rcx_task *)(void *)((u8 *)b->task + (u16)(n * size))) : NULL;
 }
 
 /* One place keeps runmask in step with the states (a shift by a variable count is a loop on the H8/300: written
  * once). */
+RCX_STATIC_ASSERT(runmask_bits, RCX_TASKS <= 16);
 void sched_set_state(struct rcx *b, struct rcx_task *t, u8 state)
 {
     const struct rcx_task *u;
     u16 bit = 1, mask;
 
+#ifdef __H8300__
+    if (sizeof(struct rcx_task) == 32) { /* (Swan's image; 30 bytes without its fields) */
+        /* The bit set or cleared in place: bset and bclr take the bit number from a register's low three bits.
+         * Task n is bit n & 7 of runmask's low byte (n < 8: the second byte, big-endian) or of its high byte. */
+        u8 n, *m = (u8 *)&b->runmask;
+
+        t->state = state;
+        n = (u8)((u16)((u16)((const u8 *)t - (const u8 *)b->task) << 3) >> 8); /* the offset / 32 */
+        if (n < 8)
+            m++;
+        if (state == RCX_TASK_RUNNING)
+            __asm__ __volatile__("bset\t%X1,@%T0" : : "r"(m), "r"(n) : "memory");
+        else
+            __asm__ __volatile__("bclr\t%X1,@%T0" : : "r"(m), "r"(n) : "memory");
+        return;
+    }
+#endif
     for (u = b->task; u != t; u++)
         bit <<= 1;
     t->state = state;

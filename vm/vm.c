@@ -19,9 +19,10 @@ void vm_init(struct rcx *b, u16 arena_addr)
 
 static void wake_waiting(struct rcx *b)
 {
-    u8 n, still = 0;
-    for (n = 0; n < RCX_TASKS; n++) {
-        struct rcx_task *t = &b->task[n];
+    struct rcx_task *t = b->task;
+    u8 still = 0;
+
+    do { /* (a pointer: an index would cost a multiplication by the task's size, a shift loop) */
         if (t->state == RCX_TASK_WAITING) {
 #if RCX_SWAN
             if ((s16)(u16)(wait_clock(b, t) - t->wake) >= 0) {
@@ -37,13 +38,13 @@ static void wake_waiting(struct rcx *b)
             }
 #endif
         }
-    }
+    } while (++t != b->task + RCX_TASKS);
     b->waiting = still;
 }
 
 void vm_tick(struct rcx *b)
 {
-    u8 i, wake = 0;
+    u8 wake = 0;
 
     /* Engines with nothing in progress are not called: each would only find that out. No reversing pause; no note
      * and none queued (a sound is only ever started with a note's length, so none is sounding either). */
@@ -70,9 +71,14 @@ void vm_tick(struct rcx *b)
     if (b->ms)
         return;
     if (++b->step10 >= 10) {
+        u16 *tm = b->timer;
+        u8 n = RCX_TIMERS;
+
         b->step10 = 0;
-        for (i = 0; i < RCX_TIMERS; i++)
-            b->timer[i] = (u16)((b->timer[i] + 1) & 0x7FFF); /* 0-32767, then 0 again (spec p. 6) */
+        do { /* 0-32767, then 0 again (spec p. 6) */
+            *tm = (u16)((*tm + 1) & 0x7FFF);
+            tm++;
+        } while (--n);
     }
     /* A 10 ms step ended: once the timers have moved on, the events that watch them, and every other step the
      * display (DISPLAY_REFRESH_MS). */

@@ -96,7 +96,7 @@ RCX_HIGH_CODE void sci_stop(void)
     tx_active = 0;
 }
 
-u8 hal_ir_busy(struct rcx *b)
+RCX_HIGH_CODE u8 hal_ir_busy(struct rcx *b)
 {
     (void)b;
     return (u8)((u8)(tx_head ^ tx_tail) | tx_active); /* non-zero: busy (hal.h) */

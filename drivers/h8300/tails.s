@@ -1,0 +1,34 @@
+; SPDX-License-Identifier: MPL-2.0
+; The function endings shared by the C files that drivers/h8300/tails/as rewrites (--rcx-shared-tails): a function
+; whose epilogue is one of these jumps here instead of holding its own copy. Each entry is the rest of its epilogue.
+
+	.section .text
+	.global	___rcx_ret_a6
+	.global	___rcx_ret6
+	.global	___rcx_ret5
+	.global	___rcx_ret6_f2
+	.global	___rcx_ret6_f4
+
+___rcx_ret_a6:
+	adds	#2,r7			; the stack arguments of the function's last call
+___rcx_ret6:
+	mov.w	@r7+,r6
+___rcx_ret5:
+	mov.w	@r7+,r5
+	mov.w	@r7+,r4
+	rts
+
+___rcx_ret6_f4:				; 4 bytes of locals below the saved registers' ... above them: popped last
+	mov.w	@r7+,r6
+	mov.w	@r7+,r5
+	mov.w	@r7+,r4
+	adds	#2,r7
+	adds	#2,r7
+	rts
+
+___rcx_ret6_f2:
+	mov.w	@r7+,r6
+	mov.w	@r7+,r5
+	mov.w	@r7+,r4
+	adds	#2,r7
+	rts
