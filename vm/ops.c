@@ -202,7 +202,7 @@ OP(op_message)
 }
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
-static RCX_HIGH_CODE void op_clear_events(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
+static void op_clear_events(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     UNUSED_T;
     UNUSED_INS;
