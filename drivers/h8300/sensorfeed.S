@@ -8,8 +8,8 @@
 ;
 ; void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 ;
-; Registers: r1 = s throughout; r2 = raw (10 bits once past the steady check); r0l = the new boolean from the
-; boolean's part on; r4 = the value from the mode's part on; r3 scratch; b on the stack (2(r7), under r4).
+; Registers: r1 = s throughout; r2 = raw (10 bits once past the steady check); r0h = the mode and r0l = the new
+; boolean from the boolean's part on; r4 = the value from the mode's part on; r3 scratch; b on the stack (2(r7), under r4).
 ; Booleans are 0 or 1, and raw and past[] 10-bit values, as the C keeps them. Calls to C are jsr written as data:
 ; ld --relax then rewrites no instruction here (see unpack.s); r4 survives them (gcc keeps r4-r6).
 
@@ -42,7 +42,8 @@ _sensor_feed:
 	mov.w	r0,@r1			; quiet = SENSOR_MOVING
 
 	; The boolean (boolean_of()) into r0l: absolute with slope 0, else from the change since then (r4).
-3:	mov.b	@(SF_MODE,r1),r3l
+3:	mov.b	@(SF_MODE,r1),r0h	; the mode, kept in r0h
+	mov.b	r0h,r3l
 	and.b	#0x1F,r3l		; slope
 	bne	dyn
 	mov.w	#460,r3			; BOOL_ON_BELOW
@@ -57,9 +58,10 @@ on:	mov.b	#1,r0l
 	bra	bdone
 dyn:	sub.b	r3h,r3h			; r3 = slope
 	sub.w	r2,r4			; then - raw
-	mov.w	r2,r0
-	add.w	r3,r0
-	cmp.b	#4,r0h
+	add.w	r3,r2
+	mov.b	r2h,r0l
+	sub.w	r3,r2
+	cmp.b	#4,r0l
 	bcc	off			; raw > 1023 - slope
 	add.w	r3,r4
 	blt	off			; raw - then > slope
@@ -71,7 +73,7 @@ dyn:	sub.b	r3h,r3h			; r3 = slope
 keep:	mov.b	@(SF_BOOLEAN,r1),r0l
 
 	; The value, in r4, by mode (slope left out): percent and angle first, then the lower modes.
-bdone:	mov.b	@(SF_MODE,r1),r3l
+bdone:	mov.b	r0h,r3l
 	and.b	#0xE0,r3l
 	bpl	low
 	cmp.b	#0x80,r3l
