@@ -9,7 +9,8 @@
 ; void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 ;
 ; Registers: r1 = s throughout; r2 = raw (10 bits once past the steady check); r0h = the mode and r0l = the new
-; boolean from the boolean's part on; r4 = the value from the mode's part on; r3 scratch; b on the stack (2(r7), under r4).
+; boolean from the boolean's part on; r4 = the value from the mode's part on; r3 scratch; b on the stack (2(r7),
+; under r4).
 ; Booleans are 0 or 1, and raw and past[] 10-bit values, as the C keeps them. Calls to C are jsr written as data:
 ; ld --relax then rewrites no instruction here (see unpack.s); r4 survives them (gcc keeps r4-r6).
 
