@@ -29,12 +29,16 @@ _sensor_feed:
 	mov.w	r4,@-r7
 	mov.w	r2,@r1			; quiet = raw | SENSOR_STEADY, SENSOR_MOVING below unless raw = last = past[1]
 	and.b	#3,r2h			; raw, 10 bits
-	mov.w	@(SF_PAST,r1),r4	; then: past[0]
-	mov.w	@(SF_PAST+2,r1),r0	; past[1] ...
-	mov.w	r0,@(SF_PAST,r1)	; ... is past[0] now
-	mov.w	@(SF_RAW,r1),r3		; last ...
-	mov.w	r3,@(SF_PAST+2,r1)	; ... is past[1]
-	mov.w	r2,@(SF_RAW,r1)
+	adds	#2,r1
+	adds	#2,r1			; at raw (SF_RAW), then past[0], past[1]
+	mov.w	@r1+,r3			; last ...
+	mov.w	@r1+,r4			; then: past[0]
+	mov.w	@r1+,r0			; past[1] ...
+	mov.w	r3,@-r1			; ... last is past[1] ...
+	mov.w	r0,@-r1			; ... and past[1] past[0]
+	mov.w	r2,@-r1
+	subs	#2,r1
+	subs	#2,r1			; s again
 	cmp.w	r2,r3
 	bne	2f
 	cmp.w	r2,r0
@@ -47,15 +51,15 @@ _sensor_feed:
 	mov.b	r0h,r3l
 	and.b	#0x1F,r3l		; slope
 	bne	dyn
+	mov.w	#562,r3			; BOOL_OFF_ABOVE (a moving light sensor is mostly above)
+	cmp.w	r3,r2
+	bhi	off
 	mov.w	#460,r3			; BOOL_ON_BELOW
 	cmp.w	r3,r2
-	bcs	on
-	mov.w	#562,r3			; BOOL_OFF_ABOVE
-	cmp.w	r3,r2
-	bls	keep
-off:	sub.b	r0l,r0l
-	bra	bdone
+	bcc	keep
 on:	mov.b	#1,r0l
+	bra	bdone
+off:	sub.b	r0l,r0l
 	bra	bdone
 dyn:	sub.b	r3h,r3h			; r3 = slope
 	sub.w	r2,r4			; then - raw
@@ -99,28 +103,15 @@ bdone:	mov.b	r0h,r3l
 vd1:	bra	vdone
 
 nperc:	cmp.b	#0xE0,r3l
-	bne	temp
-	mov.w	@(SF_VALUE,r1),r4	; angle (turn()): the count moved by the step of phase
-	mov.w	r2,r3
-	add.w	r3,r3
-	add.w	r3,r3
-	mov.b	r3h,r3l
-	sub.b	r3h,r3h			; raw / 64
-	mov.b	@(_sensor_phase_of,r3),r3l
-	cmp.b	#4,r3l
-	beq	vdone			; no valid level
-	mov.b	@(SF_PHASE,r1),r3h	; the phase before
-	mov.b	r3l,@(SF_PHASE,r1)
-	cmp.b	#4,r3h
-	beq	vdone
-	sub.b	r3h,r3l			; the change of phase, mod 4
-	shlr	r3l
-	bcc	vdone			; 0, or 2: no direction
-	shlr	r3l
-	bcs	1f
-	adds	#1,r4			; 1: a step up
-	bra	vdone
-1:	subs	#1,r4			; 3: a step down
+	beq	angle
+temp:	mov.w	r0,@-r7			; Celsius, Fahrenheit: sensor_temperature(mode, raw)
+	mov.w	r1,@-r7
+	mov.b	r3l,r0l
+	mov.w	r2,r1
+	.word	0x5E00,_sensor_temperature ; jsr
+	mov.w	r0,r4
+	mov.w	@r7+,r1
+	mov.w	@r7+,r0
 	bra	vdone
 
 low:	beq	mraw
@@ -142,36 +133,48 @@ addc:	addx	#0,r4l
 mraw:	mov.w	r2,r4
 	bra	vdone
 
-temp:	mov.w	r0,@-r7			; Celsius, Fahrenheit: sensor_temperature(mode, raw)
-	mov.w	r1,@-r7
-	mov.b	r3l,r0l
-	mov.w	r2,r1
-	.word	0x5E00,_sensor_temperature ; jsr
-	mov.w	r0,r4
-	mov.w	@r7+,r1
-	mov.w	@r7+,r0
+angle:	mov.w	@(SF_VALUE,r1),r4	; angle (turn()): the count moved by the step of phase
+	mov.w	r2,r3
+	add.w	r3,r3
+	add.w	r3,r3
+	mov.b	r3h,r3l
+	sub.b	r3h,r3h			; raw / 64
+	mov.b	@(_sensor_phase_of,r3),r3l
+	cmp.b	#4,r3l
+	beq	vdone			; no valid level
+	mov.b	@(SF_PHASE,r1),r3h	; the phase before
+	mov.b	r3l,@(SF_PHASE,r1)
+	cmp.b	#4,r3h
+	beq	vdone
+	sub.b	r3h,r3l			; the change of phase, mod 4
+	btst	#0,r3l
+	beq	vdone			; 0, or 2: no direction
+	adds	#1,r4			; 1: a step up
+	btst	#1,r3l
+	beq	vdone
+	subs	#2,r4			; 3: a step down
 
 	; Stored; then the events that watch the input, when the value left lo ... hi.
 vdone:	mov.b	r0l,@(SF_BOOLEAN,r1)
 	mov.w	r4,@(SF_VALUE,r1)
-	mov.b	@(SF_WATCHED,r1),r3l
+	mov.b	@(SF_WATCHED,r1),r3h
 	beq	out
-	mov.w	@(SF_LO,r1),r3
-	cmp.w	r3,r4
+	mov.w	@(SF_LO,r1),r2
+	cmp.w	r2,r4
 	ble	ev
-	mov.w	@(SF_HI,r1),r3
-	cmp.w	r3,r4
+	mov.w	@(SF_HI,r1),r2
+	cmp.w	r2,r4
 	blt	out
 ev:	mov.w	@(2,r7),r0		; b
 	mov.b	@(SF_LATE,r0),r3l
 	beq	eval
-	sub.w	r3,r3			; late: the events look at the next sample
-	mov.w	r3,@r1			; quiet = SENSOR_MOVING
-	mov.b	#0x80,r3h
-	mov.w	r3,@(SF_HI,r1)		; hi = -32768
+	sub.w	r2,r2			; late: the events look at the next sample
+	mov.w	r2,@r1			; quiet = SENSOR_MOVING
+	mov.b	#0x80,r2h
+	mov.w	r2,@(SF_HI,r1)		; hi = -32768
 	bra	out
 eval:	mov.w	r1,r4
-	mov.b	@(SF_WATCHED,r4),r1l
+	mov.b	r3h,r1l			; watched
 	mov.b	@(SF_NUMBER,r4),r2l
 	inc	r2l			; EVENTS_KEY(number)
 	.word	0x5E00,_events_evaluate	; jsr
