@@ -25,6 +25,30 @@ _sensor_feed:
 	cmp.w	r3,r2
 	bne	1f
 	rts				; steady: nothing can change
+
+	; The boolean's less common cases (out of the way: raw above 562, mostly, falls through to bdone).
+notoff:	mov.w	#460,r3			; BOOL_ON_BELOW
+	cmp.w	r3,r2
+	bcc	keep
+on:	mov.b	#1,r0l
+	bra	bdone
+dyn:	sub.b	r3h,r3h			; r3 = slope
+	sub.w	r2,r4			; then - raw
+	add.w	r3,r2
+	mov.b	r2h,r0l
+	sub.w	r3,r2
+	cmp.b	#4,r0l
+	bcc	off			; raw > 1023 - slope
+	add.w	r3,r4
+	blt	off			; raw - then > slope
+	cmp.w	r3,r2
+	bcs	on			; raw < slope
+	sub.w	r3,r4
+	sub.w	r3,r4
+	bgt	on			; then - raw > slope
+keep:	mov.b	@(SF_BOOLEAN,r1),r0l
+	bra	bdone
+
 1:	mov.w	r0,@-r7			; b
 	mov.w	r4,@-r7
 	mov.w	r2,@r1			; quiet = raw | SENSOR_STEADY, SENSOR_MOVING below unless raw = last = past[1]
@@ -53,29 +77,8 @@ _sensor_feed:
 	bne	dyn
 	mov.w	#562,r3			; BOOL_OFF_ABOVE (a moving light sensor is mostly above)
 	cmp.w	r3,r2
-	bhi	off
-	mov.w	#460,r3			; BOOL_ON_BELOW
-	cmp.w	r3,r2
-	bcc	keep
-on:	mov.b	#1,r0l
-	bra	bdone
+	bls	notoff			; at most 562: on, or as it was
 off:	sub.b	r0l,r0l
-	bra	bdone
-dyn:	sub.b	r3h,r3h			; r3 = slope
-	sub.w	r2,r4			; then - raw
-	add.w	r3,r2
-	mov.b	r2h,r0l
-	sub.w	r3,r2
-	cmp.b	#4,r0l
-	bcc	off			; raw > 1023 - slope
-	add.w	r3,r4
-	blt	off			; raw - then > slope
-	cmp.w	r3,r2
-	bcs	on			; raw < slope
-	sub.w	r3,r4
-	sub.w	r3,r4
-	bgt	on			; then - raw > slope
-keep:	mov.b	@(SF_BOOLEAN,r1),r0l
 
 	; The value, in r4, by mode (slope left out): percent and angle first, then the lower modes.
 bdone:	mov.b	r0h,r3l
