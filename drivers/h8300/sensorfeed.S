@@ -98,10 +98,9 @@ bdone:	mov.b	r0h,r3l
 	add.w	r3,r4			; 25 x
 	mov.b	#156,r3l
 	divxu.b	r3l,r4			; r4l = 25 x / 156: 101 to 163 for raw below 393
-	mov.b	#100,r4h
-	cmp.b	r4h,r4l
+	cmp.b	#100,r4l
 	bls	1f
-	mov.b	r4h,r4l
+	mov.b	#100,r4l
 1:	sub.b	r4h,r4h
 vd1:	bra	vdone
 
