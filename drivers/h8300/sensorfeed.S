@@ -178,10 +178,10 @@ ev:	mov.w	@(2,r7),r0		; b
 eval:	mov.w	r1,r4
 	mov.b	r3h,r1l			; watched
 	mov.b	@(SF_NUMBER,r4),r2l
-	inc	r2l			; EVENTS_KEY(number)
+	inc	r2l			; EVENTS_KEY(number), kept for the second call
+	mov.w	r2,@-r7
 	.word	0x5E00,_events_evaluate	; jsr
-	mov.b	@(SF_NUMBER,r4),r2l
-	inc	r2l
+	mov.w	@r7+,r2
 	mov.w	r4,r1
 	mov.w	@(2,r7),r0
 	.word	0x5E00,_events_window	; jsr
