@@ -84,12 +84,12 @@ static s16 celsius(u16 raw)
 #define PHASE_NONE 4
 /* The band edges 320, 512, 768 and 960 are all multiples of 64, so raw / 64 picks the phase. For a 10-bit raw that
  * is the high byte of raw * 4: two additions, where gcc shifts right in a six-step loop. */
-static const u8 phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 };
+const u8 sensor_phase_of[16] = { 4, 4, 4, 4, 4, 2, 2, 2, 3, 3, 3, 3, 1, 1, 1, 0 }; /* also read by sensorfeed.S */
 static inline u8 rotation_phase(u16 raw)
 {
     raw = (u16)(raw << 2);
     __asm__("" : "+r"(raw)); /* no code: keeps gcc from folding the two steps into raw >> 6, a six-step loop */
-    return phase_of[(u8)(raw >> 8)];
+    return sensor_phase_of[(u8)(raw >> 8)];
 }
 
 struct rcx_sensor *sensor_clear(struct rcx *b, u8 n)
@@ -133,6 +133,41 @@ void sensor_set_type(struct rcx *b, u8 n, u8 type)
     hal_sensor_power(b, n, type >= SENSOR_LIGHT);
 }
 
+/* The temperature modes, Celsius and Fahrenheit (mode without its slope): out of line, and called by
+ * drivers/h8300/sensorfeed.S too. */
+s16 sensor_temperature(u8 mode, u16 raw)
+{
+    s16 v;
+
+    if (raw < TEMP_LOW || raw > TEMP_HIGH)
+        return SENSOR_TEMP_INVALID;
+    v = celsius(raw);
+    if (mode == SENSOR_MODE_FAHRENHEIT)
+        v = (s16)(v + v * 4 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result (v * 4 / 5 has v's sign) */
+    return v;
+}
+
+#ifdef __H8300__
+/* On the brick sensor_feed() is drivers/h8300/sensorfeed.S (gcc 3.4's code for the C below took some 690 states a
+ * moving sample, issue 21); the C here is its reference (tests/drivers/test_h8feed.c compares the two). */
+#include "sensorfeed.h"
+#include <stddef.h>
+RCX_STATIC_ASSERT(sf_fields, offsetof(struct rcx_sensor, quiet) == SF_QUIET && offsetof(struct rcx_sensor, value)
+                             == SF_VALUE && offsetof(struct rcx_sensor, raw) == SF_RAW
+                             && offsetof(struct rcx_sensor, past) == SF_PAST && offsetof(struct rcx_sensor, lo) == SF_LO
+                             && offsetof(struct rcx_sensor, hi) == SF_HI);
+RCX_STATIC_ASSERT(sf_bytes, offsetof(struct rcx_sensor, mode) == SF_MODE
+                            && offsetof(struct rcx_sensor, boolean) == SF_BOOLEAN
+                            && offsetof(struct rcx_sensor, phase) == SF_PHASE
+                            && offsetof(struct rcx_sensor, watched) == SF_WATCHED
+                            && offsetof(struct rcx_sensor, number) == SF_NUMBER);
+RCX_STATIC_ASSERT(sf_none, SF_WINDOW_NONE == EVENTS_WINDOW_NONE);
+RCX_STATIC_ASSERT(sf_late, offsetof(struct rcx, sensor[0].late) == SF_LATE && EVENTS_KEY(1) == 2
+                           && SENSOR_DT_MS == 3);
+RCX_STATIC_ASSERT(sf_modes, SENSOR_MODE_PERCENT == 0x80 && SENSOR_MODE_ANGLE == 0xE0 && SENSOR_MODE_BOOL == 0x20
+                            && SENSOR_MODE_TRANSITIONS == 0x40 && SENSOR_SLOPE == 0x1F && PHASE_NONE == 4
+                            && BOOL_ON_BELOW == 460 && BOOL_OFF_ABOVE == 562 && SENSOR_STEADY == 0x8000);
+#else
 /* x * 25 / 156 for x = 1023 - raw, 0-630: x * 10503 / 65536, the same for every such x (25 / 156 = 0.1602564...,
  * 10503 / 65536 = 0.1602631...: the error stays below 1/156, the least fraction the exact quotient can have). Worked
  * out with the H8's 8 x 8 multiply on the bytes h and l of x, 10503 being 41 * 256 + 7:
@@ -145,19 +180,12 @@ static s16 percent(u16 x)
     return (s16)((u16)h * 41u + (((u16)l * 41u + (u16)h * 7u + (((u16)l * 7u) >> 8)) >> 8));
 }
 
-/* The converting modes: percent, Celsius, Fahrenheit. Out of line: a function of its own is shorter on the H8. */
-static __attribute__((noinline)) s16 converted(u8 mode, u16 raw)
+/* The converting modes: percent, Celsius, Fahrenheit. */
+static s16 converted(u8 mode, u16 raw)
 {
-    s16 v;
-
     if (mode == SENSOR_MODE_PERCENT)
         return raw < PERCENT_FULL_BELOW ? 100 : percent(raw ^ 1023u); /* 1023 - raw */
-    if (raw < TEMP_LOW || raw > TEMP_HIGH)
-        return SENSOR_TEMP_INVALID;
-    v = celsius(raw);
-    if (mode == SENSOR_MODE_FAHRENHEIT)
-        v = (s16)(v + v * 4 / 5 + 320); /* the reference's t * 18 / 10 + 320, same result (v * 4 / 5 has v's sign) */
-    return v;
+    return sensor_temperature(mode, raw);
 }
 
 /*
@@ -259,6 +287,8 @@ void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
         }
     }
 }
+
+#endif /* __H8300__ */
 
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
  * the boolean and the value are the ones the last of them gave (the boolean of a steady signal is a function of

@@ -66,5 +66,9 @@ void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw); /* one of them; 
  * equal to its last one would change nothing: all steady (rcx_sensor.quiet; the event engine marks an input moving
  * when its events want a sample). A port that sees its inputs unchanged may then skip sensor_scan() for them. */
 u8 sensors_at_rest(struct rcx *b);
+/* Also used by the brick's sensor_feed() in assembler (drivers/h8300/sensorfeed.S): the rotation sensor's phase of
+ * raw / 64 (4: none), and the value of the temperature modes (mode without its slope). */
+extern const u8 sensor_phase_of[16];
+s16 sensor_temperature(u8 mode, u16 raw);
 
 #endif
