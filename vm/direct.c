@@ -26,31 +26,8 @@ static const u8 direct_ops[] = {
 
 enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NOT_ACTIVE = 6 };
 
-/*
- * Tasks and subroutines are named here by their place among the selected slot's code objects (rcx.h): subroutine n
- * is n, task n is RCX_SUBS + n, and rcx_obj_sub(b->prog, id) its code object either way.
- *
- * Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
- * leaves a subroutine's code for good when it is stopped). Then the code is deleted, unless it is still being
- * downloaded: the download stays active (reference-firmware.md).
- */
-static void release(struct rcx *b, u8 id)
-{
-    u8 n, obj;
-
-    /* The task itself (id - RCX_SUBS wraps past every task for a subroutine), or every task inside the subroutine
-     * (a task's sub and ret_sub are subroutines or RCX_NO_SUB, never a task's id). A task in its own body
-     * (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle task changes nothing. */
-    for (n = 0; n < RCX_TASKS; n++) {
-        const struct rcx_task *t = &b->task[n];
-
-        if (n == (u8)(id - RCX_SUBS) || t->sub == id || (t->has_ret && t->ret_sub == id))
-            sched_stop_task(b, n);
-    }
-    obj = rcx_obj_sub(b->prog, id);
-    if (!(b->dl.active && b->dl.obj == obj))
-        mem_delete(b, obj);
-}
+/* Tasks and subroutines are named here by their place among the selected slot's code objects (rcx.h): subroutine n is
+ * n, task n is RCX_SUBS + n (mem_delete, vm/progmem.c). */
 
 /* 0x25, 0x35: opcode, 0, number, 0, size(2). */
 static u8 begin_download(struct rcx *b, const u8 *cmd)
@@ -65,7 +42,7 @@ static u8 begin_download(struct rcx *b, const u8 *cmd)
         id = 0xFF;
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
-        mem_delete(b, b->dl.obj);
+        mem_resize(b, b->dl.obj, 0);
     }
     if (id == 0xFF)
         return DL_BAD_NUMBER;
@@ -74,7 +51,7 @@ static u8 begin_download(struct rcx *b, const u8 *cmd)
      * it fits, the old code goes (its tasks stopped) and the new one starts as zeros. */
     if (!mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4)))
         return DL_NO_MEMORY;
-    release(b, id);
+    mem_delete(b, id, 1);
     mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4));
     b->dl.active = 1;
     b->dl.expect = 1;
@@ -110,6 +87,9 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     b->dl.last = seq;
     b->dl.expect = (u16)(seq + 1); /* (after the last block, 0, nothing more is expected) */
     memcpy(b->arena + at, end - count, count);
+#if RCX_SWAN
+    swan_block(b, count);
+#endif
     if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
 #if RCX_SWAN
@@ -185,9 +165,7 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
             id = (u8)(id + cmd[1]);
             n = 1;
         }
-        do
-            release(b, id++);
-        while (--n);
+        mem_delete(b, id, n);
         return 1;
     }
     case D_UNLOCK_BRICK:

@@ -29,31 +29,108 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
     return mem_obj_size(b, obj) != 0;
 }
 
-/* Keeps the first min(old, new) bytes of the object; bytes it gains are zero. */
-u8 mem_resize(struct rcx *b, u8 obj, u16 size)
+/*
+ * Objects obj to obj + n - 1 become one of `size` bytes, the last (the others empty), which keeps the first bytes they
+ * had, up to `size`. What follows moves by the difference: at once, or, with RCX_MOVE_STEP (the brick), a pass of the
+ * main loop at a time (mem_step), so that a command on a full memory never holds the IR link and the buttons for
+ * long (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's. A
+ * resize whose end is where that move's bytes begin (BeginOfTask's resizes of one object) joins it; any other first
+ * completes it.
+ */
+static u8 resize(struct rcx *b, u8 obj, u8 n, u16 size)
 {
-    u16 *start = &b->obj_start[obj + 1];
-    u16 tail = *start, old = (u16)(tail - start[-1]), end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
-    u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: the offsets add it alike */
+    u16 *start = &b->obj_start[obj], *last = start + n;
+    u16 first = *start, tail = *last, end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
+    u16 old = (u16)(tail - first), delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative */
+#if RCX_MOVE_STEP
+    struct rcx_move *m = &b->move;
+#else
     u8 *at = b->arena + tail;
+#endif
 
-    if (size > old && delta > (u16)(RCX_ARENA_SIZE - end))
+    if (size > (u16)(RCX_ARENA_SIZE - end + old))
         return 0;                  /* growth needs the room */
-    end = (u16)(end - tail);       /* bytes after the object, up to the datalog's end */
+    end = (u16)(end - tail);       /* bytes after the objects, up to the datalog's end */
+    while (++start < last)
+        *start = first;
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
+#if RCX_MOVE_STEP
+    if (!m->len || tail != m->to) {
+        while (mem_step(b))
+            ;
+        m->from = m->to = tail;
+        m->len = end;
+    }
+    m->to = (u16)(m->to + delta);
+#else
     /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
-     * than the arena (a shrinkage moves it down). */
+     * than the arena (a shrinkage moves it down). The bytes gained are zero. */
     memmove(at + (s16)delta, at, end);
-    if ((s16)delta > 0)            /* the bytes gained are zero */
+    if ((s16)delta > 0)
         memset(at, 0, delta);
+#endif
     return 1;
 }
 
-void mem_delete(struct rcx *b, u8 obj)
+u8 mem_resize(struct rcx *b, u8 obj, u16 size)
 {
-    mem_resize(b, obj, 0);
+    return resize(b, obj, 1, size);
 }
+
+/*
+ * Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
+ * leaves a subroutine's code for good when it is stopped). Then the code is deleted, unless it is still being
+ * downloaded: the download stays active (reference-firmware.md). All of them at once: one move of the memory.
+ */
+void mem_delete(struct rcx *b, u8 id, u8 count)
+{
+    u8 n, k = count, obj = rcx_obj_sub(b->prog, id);
+
+    /* The task itself (id - RCX_SUBS wraps past every task for a subroutine), or every task inside the subroutine
+     * (a task's sub and ret_sub are subroutines or RCX_NO_SUB, never a task's id). A task in its own body
+     * (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle task changes nothing. */
+    do {
+        u8 i = (u8)(id + --k);
+        for (n = 0; n < RCX_TASKS; n++) {
+            const struct rcx_task *t = &b->task[n];
+
+            if (n == (u8)(i - RCX_SUBS) || t->sub == i || (t->has_ret && t->ret_sub == i))
+                sched_stop_task(b, n);
+        }
+    } while (k);
+    k = (u8)(b->dl.obj - obj);
+    if (b->dl.active && k < count) { /* the code being downloaded stays: the objects after it go, then those before */
+        resize(b, (u8)(b->dl.obj + 1), (u8)(count - k - 1), 0);
+        count = k;
+    }
+    resize(b, obj, count, 0);
+}
+
+#if RCX_MOVE_STEP
+/* RCX_MOVE_STEP bytes of the move (downwards from its start, upwards from its end, so that nothing is overwritten
+ * before it is moved); 0 when there was none. The bytes an object gains keep what was there until its blocks come. */
+u8 mem_step(struct rcx *b)
+{
+    struct rcx_move *m = &b->move;
+    u16 n = m->len, left;
+    u8 *a = b->arena;
+
+    if (!n)
+        return 0;
+    if (n > RCX_MOVE_STEP)
+        n = RCX_MOVE_STEP;
+    m->len = left = (u16)(m->len - n);
+    if (m->to < m->from) {
+        memmove(a + m->to, a + m->from, n);
+        m->to = (u16)(m->to + n);
+        m->from = (u16)(m->from + n);
+    } else {
+        memmove(a + m->to + left, a + m->from + left, n);
+    }
+    return 1;
+}
+#endif
 
 static u8 *put_word(u8 *p, u16 w)
 {
