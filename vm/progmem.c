@@ -78,29 +78,14 @@ u8 mem_resize(struct rcx *b, u8 obj, u16 size)
     return resize(b, obj, 1, size);
 }
 
-/*
- * Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
- * leaves a subroutine's code for good when it is stopped). Then the code is deleted, unless it is still being
- * downloaded: the download stays active (reference-firmware.md). All of them at once: one move of the memory.
- */
+/* The selected slot's subroutines or tasks id to id + count - 1 (numbered as vm/direct.c does), whose tasks are
+ * stopped, go at once (one move of the memory), but for the code still being downloaded: the download stays active
+ * (reference-firmware.md). */
 void mem_delete(struct rcx *b, u8 id, u8 count)
 {
-    u8 n, k = count, obj = rcx_obj_sub(b->prog, id);
+    u8 obj = rcx_obj_sub(b->prog, id), k = (u8)(b->dl.obj - obj);
 
-    /* The task itself (id - RCX_SUBS wraps past every task for a subroutine), or every task inside the subroutine
-     * (a task's sub and ret_sub are subroutines or RCX_NO_SUB, never a task's id). A task in its own body
-     * (RCX_NO_SUB, no return address) never matches a subroutine, and stopping an idle task changes nothing. */
-    do {
-        u8 i = (u8)(id + --k);
-        for (n = 0; n < RCX_TASKS; n++) {
-            const struct rcx_task *t = &b->task[n];
-
-            if (n == (u8)(i - RCX_SUBS) || t->sub == i || (t->has_ret && t->ret_sub == i))
-                sched_stop_task(b, n);
-        }
-    } while (k);
-    k = (u8)(b->dl.obj - obj);
-    if (b->dl.active && k < count) { /* the code being downloaded stays: the objects after it go, then those before */
+    if (b->dl.active && k < count) { /* the objects after it go, then those before */
         resize(b, (u8)(b->dl.obj + 1), (u8)(count - k - 1), 0);
         count = k;
     }

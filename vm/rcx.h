@@ -211,8 +211,9 @@ s16 ops_arith(s16 a, s16 v, u8 kind); /* a op v for kind ARITH_* (rcx_opcodes.h)
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
 /* Swan's opcodes (vm/swan.c): run the instruction of row r (a stack overflow or underflow stops the task). */
 void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
-void swan_block(struct rcx *b, u16 count); /* a download's block of `count` bytes came: looked at for Swan code */
-void swan_download_done(struct rcx *b); /* the last block came: the object's size, then its slot's kind */
+/* A download's block of `count` bytes at `src`, checked: written, looked at for Swan code; the last (number 0) ends the
+ * download (the object's final size, then its slot's kind). */
+void swan_block(struct rcx *b, const u8 *src, u16 count);
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
 void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's WaitMS */

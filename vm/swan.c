@@ -113,15 +113,19 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
  * reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at as it
  * comes (the last block's all, a truncated one too), walked from the object's start instruction by instruction: the
  * end of a download then has no walk of its slot to make, which on a full slot held the main loop 75 ms (issue 21
- * item 3, docs/timing.md).
+ * item 3, docs/timing.md). The block of `count` bytes at `src` is written first.
  */
 RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
-void swan_block(struct rcx *b, u16 count)
+void swan_block(struct rcx *b, const u8 *src, u16 count)
 {
-    const u8 *code = b->arena + b->obj_start[b->dl.obj], *p, *end = code + b->dl.filled;
-    u8 op, len;
+    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS), op, len;
+    const u16 *at = &b->obj_start[b->dl.obj];
+    u8 *code = b->arena + *at;
+    u8 *end = code + b->dl.filled;
+    const u8 *p;
 
+    memcpy(end - count, src, count);
     if (count == b->dl.filled)         /* the first block */
         b->dl_scan = b->dl_swan = 0;
     for (p = code + b->dl_scan; p < end; p += len) {
@@ -133,17 +137,14 @@ void swan_block(struct rcx *b, u16 count)
             b->dl_swan = 1;
     }
     b->dl_scan = (u16)(p - code);
-}
-
-/* The last block came: the object's final size, then its slot's kind. The slot's other objects are not walked again:
- * a slot that was a Swan program stays one as long as it has other code (a Swan program's objects are downloaded
- * into an emptied slot, nqc -d, host-tools.md, and the kind of each is known as it comes). */
-void swan_download_done(struct rcx *b)
-{
-    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS);
-    const u16 *at = &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]; /* the slot's first object */
-
+    if (b->dl.last)
+        return;
+    /* The last block: the code may run from now on, its final size, then its slot's kind. The slot's other objects
+     * are not walked again: a slot that was a Swan program stays one as long as it has other code (a program's
+     * objects are downloaded into an emptied slot, nqc -d, host-tools.md, and each one's kind is known as it comes). */
+    b->dl.active = 0;
     mem_resize(b, b->dl.obj, b->dl.filled);
+    at = &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]; /* the slot's first object */
     b->swan[slot] = b->dl_swan || (b->swan[slot] && (u16)(at[RCX_SLOT_OBJS] - at[0]) != b->dl.filled);
 }
 #endif
