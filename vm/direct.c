@@ -61,18 +61,17 @@ static u8 begin_download(struct rcx *b, const u8 *cmd)
         id = 0xFF;
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
-        mem_resize(b, b->dl.obj, 0);
+        mem_resize(b, b->dl.obj, 1, 0);
     }
     if (id == 0xFF)
         return DL_BAD_NUMBER;
     b->dl.obj = rcx_obj_sub(b->prog, id); /* only read while dl.active */
     /* mem_resize() refuses exactly what does not fit, and then changes nothing: the old code stays as it was. Once
-     * it fits, the old code goes (its tasks stopped) and the new one starts as zeros. */
-    if (!mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4)))
+     * it fits, the old code goes (its tasks stopped): its bytes are overwritten by the blocks (one resize, one move of
+     * the memory). */
+    if (!mem_resize(b, b->dl.obj, 1, RCX_LE16(cmd + 4)))
         return DL_NO_MEMORY;
     release(b, id);
-    mem_delete(b, id, 1);
-    mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4));
     b->dl.active = 1;
     b->dl.expect = 1;
     b->dl.last = 0xFFFF;
@@ -112,7 +111,7 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     memcpy(b->arena + at, end - count, count);
     if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
-        mem_resize(b, b->dl.obj, b->dl.filled);
+        mem_resize(b, b->dl.obj, 1, b->dl.filled);
     }
 #endif
     return DL_OK;

@@ -30,14 +30,13 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 }
 
 /*
- * Objects obj to obj + n - 1 become one of `size` bytes, the last (the others empty), which keeps the first bytes they
- * had, up to `size`. What follows moves by the difference: at once, or, with RCX_MOVE_STEP (the brick), a pass of the
- * main loop at a time (mem_step), so that a command on a full memory never holds the IR link and the buttons for
- * long (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's. A
- * resize whose end is where that move's bytes begin (BeginOfTask's resizes of one object) joins it; any other first
- * completes it.
+ * What follows the objects moves by the difference: at once, or, with RCX_MOVE_STEP (the brick), a pass of the main
+ * loop at a time (mem_step), so that a command on a full memory never holds the IR link and the buttons for long
+ * (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's, and a
+ * move left by an earlier resize is completed first (a command makes one resize but for rare cases: mem_delete, and
+ * a download abandoned by the next BeginOfTask/Sub).
  */
-static u8 resize(struct rcx *b, u8 obj, u8 n, u16 size)
+u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
 {
     u16 *start = &b->obj_start[obj], *last = start + n;
     u16 first = *start, tail = *last, end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
@@ -56,13 +55,11 @@ static u8 resize(struct rcx *b, u8 obj, u8 n, u16 size)
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
 #if RCX_MOVE_STEP
-    if (!m->len || tail != m->to) {
-        while (mem_step(b))
-            ;
-        m->from = m->to = tail;
-        m->len = end;
-    }
-    m->to = (u16)(m->to + delta);
+    while (mem_step(b))
+        ;
+    m->from = tail;
+    m->to = (u16)(tail + delta);
+    m->len = end;
 #else
     /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
      * than the arena (a shrinkage moves it down). The bytes gained are zero. */
@@ -73,11 +70,6 @@ static u8 resize(struct rcx *b, u8 obj, u8 n, u16 size)
     return 1;
 }
 
-u8 mem_resize(struct rcx *b, u8 obj, u16 size)
-{
-    return resize(b, obj, 1, size);
-}
-
 /* The selected slot's subroutines or tasks id to id + count - 1 (numbered as vm/direct.c does), whose tasks are
  * stopped, go at once (one move of the memory), but for the code still being downloaded: the download stays active
  * (reference-firmware.md). */
@@ -86,10 +78,10 @@ void mem_delete(struct rcx *b, u8 id, u8 count)
     u8 obj = rcx_obj_sub(b->prog, id), k = (u8)(b->dl.obj - obj);
 
     if (b->dl.active && k < count) { /* the objects after it go, then those before */
-        resize(b, (u8)(b->dl.obj + 1), (u8)(count - k - 1), 0);
+        mem_resize(b, (u8)(b->dl.obj + 1), (u8)(count - k - 1), 0);
         count = k;
     }
-    resize(b, obj, count, 0);
+    mem_resize(b, obj, count, 0);
 }
 
 #if RCX_MOVE_STEP

@@ -187,7 +187,9 @@ u16 mem_free(const struct rcx *b);
 u16 mem_obj_size(const struct rcx *b, u8 obj);
 static inline const u8 *mem_obj_code(const struct rcx *b, u8 obj) { return b->arena + b->obj_start[obj]; } /* (tests) */
 u8 mem_obj_runnable(const struct rcx *b, u8 obj);
-u8 mem_resize(struct rcx *b, u8 obj, u16 size); /* 0 when memory is short; contents of obj are lost */
+/* Objects obj to obj + n - 1 as one of `size` bytes (the last; the others empty), which keeps their first bytes: 0
+ * when memory is short, and then nothing changed. */
+u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size);
 void mem_delete(struct rcx *b, u8 id, u8 n); /* the selected slot's objects id to id + n - 1 (vm/direct.c), all
                                                  * but the one being downloaded */
 #if RCX_MOVE_STEP

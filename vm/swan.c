@@ -143,7 +143,7 @@ void swan_block(struct rcx *b, const u8 *src, u16 count)
      * are not walked again: a slot that was a Swan program stays one as long as it has other code (a program's
      * objects are downloaded into an emptied slot, nqc -d, host-tools.md, and each one's kind is known as it comes). */
     b->dl.active = 0;
-    mem_resize(b, b->dl.obj, b->dl.filled);
+    mem_resize(b, b->dl.obj, 1, b->dl.filled);
     at = &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]; /* the slot's first object */
     b->swan[slot] = b->dl_swan || (b->swan[slot] && (u16)(at[RCX_SLOT_OBJS] - at[0]) != b->dl.filled);
 }
