@@ -61,11 +61,10 @@ u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
     m->to = (u16)(tail + delta);
     m->len = end;
 #else
-    /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
-     * than the arena (a shrinkage moves it down). The bytes gained are zero. */
+    /* What follows the objects moves by delta either way, as a signed number now that a growth is known to be less
+     * than the arena (a shrinkage moves it down). The bytes gained keep what was there, as on the brick, until the
+     * blocks of a download overwrite them. */
     memmove(at + (s16)delta, at, end);
-    if ((s16)delta > 0)
-        memset(at, 0, delta);
 #endif
     return 1;
 }
