@@ -90,20 +90,21 @@ u8 mem_step(struct rcx *b)
 {
     struct rcx_move *m = &b->move;
     u16 n = m->len, left;
-    u8 *a = b->arena;
+    u8 *to = b->arena + m->to, *from = b->arena + m->from;
 
     if (!n)
         return 0;
     if (n > RCX_MOVE_STEP)
         n = RCX_MOVE_STEP;
     m->len = left = (u16)(m->len - n);
-    if (m->to < m->from) {
-        memmove(a + m->to, a + m->from, n);
+    if (to < from) {               /* downwards: the first bytes, and the move goes on after them */
         m->to = (u16)(m->to + n);
         m->from = (u16)(m->from + n);
-    } else {
-        memmove(a + m->to + left, a + m->from + left, n);
+    } else {                       /* upwards: the last */
+        to += left;
+        from += left;
     }
+    memmove(to, from, n);
     return 1;
 }
 #endif

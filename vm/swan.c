@@ -119,21 +119,24 @@ RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
 void swan_block(struct rcx *b, const u8 *src, u16 count)
 {
-    u8 slot = (u8)(b->dl.obj / RCX_SLOT_OBJS), op, len;
-    const u16 *at = &b->obj_start[b->dl.obj];
-    u8 *code = b->arena + *at;
-    u8 *end = code + b->dl.filled;
-    const u8 *p;
+    u8 *code = b->arena + b->obj_start[b->dl.obj], *end = code + b->dl.filled, op, len;
+    const u8 *p = code + b->dl_scan;
+    const u16 *at;
 
     memcpy(end - count, src, count);
-    if (count == b->dl.filled)         /* the first block */
-        b->dl_scan = b->dl_swan = 0;
-    for (p = code + b->dl_scan; p < end; p += len) {
+    if (count == b->dl.filled) {       /* the first block */
+        p = code;
+        b->dl_swan = 0;
+    }
+    for (; p < end; p += len) {
         op = *p;                       /* toggle bit folded: */
         len = (u8)(1 + rcx_op_params(op));
         if (b->dl.last && len > (u16)(end - p))
             break;                     /* the rest of it comes with the next block */
-        if (rcx_swan_find(op) || ((op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
+        if (rcx_swan_find(op))
+            b->dl_swan = 1;
+        op &= 0xE7;
+        if (op == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
             b->dl_swan = 1;
     }
     b->dl_scan = (u16)(p - code);
@@ -144,7 +147,8 @@ void swan_block(struct rcx *b, const u8 *src, u16 count)
      * objects are downloaded into an emptied slot, nqc -d, host-tools.md, and each one's kind is known as it comes). */
     b->dl.active = 0;
     mem_resize(b, b->dl.obj, 1, b->dl.filled);
-    at = &b->obj_start[(u8)(slot * RCX_SLOT_OBJS)]; /* the slot's first object */
-    b->swan[slot] = b->dl_swan || (b->swan[slot] && (u16)(at[RCX_SLOT_OBJS] - at[0]) != b->dl.filled);
+    op = (u8)(b->dl.obj / RCX_SLOT_OBJS); /* the slot */
+    at = &b->obj_start[(u8)(op * RCX_SLOT_OBJS)]; /* its first object */
+    b->swan[op] = b->dl_swan || (b->swan[op] && (u16)(at[RCX_SLOT_OBJS] - at[0]) != b->dl.filled);
 }
 #endif

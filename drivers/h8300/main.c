@@ -265,7 +265,7 @@ int main(void)
          * on, as long as no sample or byte comes in. In both cases the milliseconds are counted at once above, all
          * but the last, which rt_tick() takes as usual. The buttons are looked at then: a press is seen at most
          * 9 ms later, and the debouncing times it as before from there. */
-        if (!(mem_step(&brick.vm) || rt_run(&brick, owed ? RUN_SLICE : RUN_BUDGET)) && !owed && seen == drv_ms_ticks) {
+        if (!rt_run(&brick, owed ? RUN_SLICE : RUN_BUDGET) && !owed && seen == drv_ms_ticks) {
             quiet = quiet_ms();
             do
                 h8_sleep();
