@@ -119,7 +119,7 @@ RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
 void swan_block(struct rcx *b, const u8 *src, u16 count)
 {
-    u8 *code = b->arena + b->obj_start[b->dl.obj], *end = code + b->dl.filled, op, len;
+    u8 *code = b->arena + b->obj_start[b->dl.obj], *end = code + b->dl.filled, *whole = end, op;
     const u8 *p = code + b->dl_scan;
     const u16 *at;
 
@@ -128,11 +128,10 @@ void swan_block(struct rcx *b, const u8 *src, u16 count)
         p = code;
         b->dl_swan = 0;
     }
-    for (; p < end; p += len) {
-        op = *p;                       /* toggle bit folded: */
-        len = (u8)(1 + rcx_op_params(op));
-        if (b->dl.last && len > (u16)(end - p))
-            break;                     /* the rest of it comes with the next block */
+    if (b->dl.last)                    /* (not the last block) an instruction (8 bytes at most) starting later may */
+        whole -= 7;                    /* have the rest of its bytes in the next */
+    for (; p < whole; p += 1 + rcx_op_params(op)) {
+        op = *p;                       /* toggle bit folded */
         if (rcx_swan_find(op))
             b->dl_swan = 1;
         op &= 0xE7;
