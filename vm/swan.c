@@ -109,8 +109,8 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
 }
 
 /*
- * A Swan program is one whose code has a Swan opcode, or a test (SCheckDo/LCheckDo) of source 43 or 44: NQC's Swan code
- * reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at as it
+ * A Swan program is one whose code has a Swan opcode, or a test (SCheckDo/LCheckDo) of source 43 or 44: NQC's Swan
+ * code reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at as it
  * comes (the last block's all, a truncated one too), walked from the object's start instruction by instruction: the
  * end of a download then has no walk of its slot to make, which on a full slot held the main loop 75 ms (issue 21
  * item 3, docs/timing.md). The block of `count` bytes at `src` is written first.
@@ -128,8 +128,8 @@ void swan_block(struct rcx *b, const u8 *src, u16 count)
         p = code;
         b->dl_swan = 0;
     }
-    if (b->dl.last)                    /* (not the last block) an instruction (8 bytes at most) starting later may */
-        whole -= 7;                    /* have the rest of its bytes in the next */
+    if (b->dl.last)                    /* more blocks to come: an instruction (8 bytes at most) that starts in the */
+        whole -= 7;                    /* last 7 may have the rest of its bytes in the next */
     for (; p < whole; p += 1 + rcx_op_params(op)) {
         op = *p;                       /* toggle bit folded */
         if (rcx_swan_find(op))
