@@ -110,10 +110,10 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
 
 /*
  * A Swan program is one whose code has a Swan opcode, or a test (SCheckDo/LCheckDo) of source 43 or 44: NQC's Swan
- * code reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at as it
- * comes (the last block's all, a truncated one too), walked from the object's start instruction by instruction: the
- * end of a download then has no walk of its slot to make, which on a full slot held the main loop 75 ms (issue 21
- * item 3, docs/timing.md). The block of `count` bytes at `src` is written first.
+ * code reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at
+ * as it comes (the last block's all, a truncated one too), walked from the object's start instruction by instruction:
+ * the end of a download then has no walk of its slot to make, which on a full slot held the main loop 75 ms (issue
+ * 21 item 3, docs/timing.md). The block of `count` bytes at `src` is written first.
  */
 RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
 #define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
