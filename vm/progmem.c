@@ -41,10 +41,9 @@ u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
     u16 *start = &b->obj_start[obj], *last = start + n;
     u16 first = *start, tail = *last, end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
     u16 old = (u16)(tail - first), delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative */
+    u8 *at = b->arena + tail;
 #if RCX_MOVE_STEP
     struct rcx_move *m = &b->move;
-#else
-    u8 *at = b->arena + tail;
 #endif
 
     if (size > (u16)(RCX_ARENA_SIZE - end + old))
@@ -57,8 +56,8 @@ u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
 #if RCX_MOVE_STEP
     while (mem_step(b))
         ;
-    m->from = tail;
-    m->to = (u16)(tail + delta);
+    m->from = at;
+    m->to = at + delta;
     m->len = end;
 #else
     /* What follows the objects moves by delta either way, as a signed number now that a growth is known to be less
@@ -90,7 +89,7 @@ u8 mem_step(struct rcx *b)
 {
     struct rcx_move *m = &b->move;
     u16 n = m->len, left;
-    u8 *to = b->arena + m->to, *from = b->arena + m->from;
+    u8 *to = m->to, *from = m->from;
 
     if (!n)
         return 0;
@@ -98,8 +97,8 @@ u8 mem_step(struct rcx *b)
         n = RCX_MOVE_STEP;
     m->len = left = (u16)(m->len - n);
     if (to < from) {               /* downwards: the first bytes, and the move goes on after them */
-        m->to = (u16)(m->to + n);
-        m->from = (u16)(m->from + n);
+        m->to = to + n;
+        m->from = from + n;
     } else {                       /* upwards: the last */
         to += left;
         from += left;

@@ -65,10 +65,11 @@ struct rcx_download {
     u16 filled;     /* bytes written so far */
 };
 
-/* Program memory's bytes still to be moved after a resize (vm/progmem.c, RCX_MOVE_STEP): the `len` bytes at offset
- * `from` belong at `to`. */
+/* Program memory's bytes still to be moved after a resize (vm/progmem.c, RCX_MOVE_STEP): the `len` bytes at `from`
+ * belong at `to`. */
 struct rcx_move {
-    u16 from, to, len;
+    u8 *from, *to;
+    u16 len;
 };
 
 struct rcx {

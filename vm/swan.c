@@ -132,10 +132,7 @@ void swan_block(struct rcx *b, const u8 *src, u16 count)
         whole -= 7;                    /* last 7 may have the rest of its bytes in the next */
     for (; p < whole; p += 1 + rcx_op_params(op)) {
         op = *p;                       /* toggle bit folded */
-        if (rcx_swan_find(op))
-            b->dl_swan = 1;
-        op &= 0xE7;
-        if (op == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2])))
+        if (rcx_swan_find(op) || ((u8)(op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
             b->dl_swan = 1;
     }
     b->dl_scan = (u16)(p - code);
