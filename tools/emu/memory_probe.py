@@ -19,7 +19,7 @@ from emu_session import DEFAULT_IMAGE, Brick, Report, wait_until  # noqa: E402
 
 
 def big_program(statements, seed):
-    """Ten tasks of `statements` assignments each: some 46 x statements bytes of code (nqc 3.1)."""
+    """Ten tasks of `statements` assignments each: some 49 x statements bytes of code (nqc 3.1)."""
     tasks = []
     for t in range(10):
         body = "".join("    x%d = %d;\n" % (t, (seed + t * statements + k) % 30000) for k in range(statements))
@@ -66,7 +66,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--image", default=DEFAULT_IMAGE)
     ap.add_argument("--rundir")
-    ap.add_argument("--statements", type=int, default=50, help="per task (default 50: some 2 300 bytes a slot)")
+    ap.add_argument("--statements", type=int, default=44, help="per task (default 44: some 2 200 bytes a slot)")
     a = ap.parse_args()
     rep = Report()
     b = Brick(a.rundir)
