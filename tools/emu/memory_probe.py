@@ -27,22 +27,6 @@ def big_program(statements, seed):
     return "".join("int x%d;\n" % t for t in range(10)) + "".join(tasks)
 
 
-def latencies(b, mark):
-    """Reply latency in ms of every host packet after IR log offset `mark` that got a reply (see
-    Brick.reply_latency_ms)."""
-    with open(b.irlog) as f:
-        f.seek(mark)
-        rows = [line.split(None, 2) for line in f if line.strip()]
-    out = []
-    for i, (t, who, data) in enumerate(rows):
-        if who != "host":
-            continue
-        nxt = [float(r[0]) for r in rows[i + 1:] if r[1].startswith("emu")]
-        if nxt:
-            out.append((nxt[0] - float(t) - len(bytes.fromhex(data)) * 11 / 2400.0) * 1000)
-    return out
-
-
 def free_memory(b):
     """Memory map words 93 - 92 (firm0328's free memory), or None."""
     r = b.raw_cmd("20", timeout=60)
@@ -55,7 +39,7 @@ def free_memory(b):
 def step(b, rep, name, *nqc_args, timeout=600):
     mark = os.path.getsize(b.irlog)
     rc, out, secs = b.nqc(*nqc_args, timeout=timeout)
-    lat = latencies(b, mark)
+    lat = b.reply_latencies_ms(mark)
     worst = max(lat) if lat else float("nan")
     rep.check(name, rc == 0, "%.1f s, %d replies, longest latency %.1f ms%s"
               % (secs, len(lat), worst, "" if rc == 0 else ": " + out[-200:]))
