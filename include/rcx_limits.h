@@ -39,6 +39,12 @@
 #define RCX_ARENA_SIZE 16384u
 #endif
 
+/* Bytes of program memory a pass of the main loop moves after a resize (vm/progmem.c): the firmware image's is set in
+ * CMakeLists.txt; 0, the host's, moves them at once. */
+#ifndef RCX_MOVE_STEP
+#define RCX_MOVE_STEP 0
+#endif
+
 /* Longest reply a direct command can produce: the memory map, 1 + 94 words. */
 #define RCX_REPLY_MAX 189
 

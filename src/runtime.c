@@ -20,6 +20,10 @@ void rt_init(struct rcx_brick *k, u16 arena_addr)
 
 u16 rt_run(struct rcx_brick *k, u16 budget)
 {
+    /* A move of program memory not completed (vm/progmem.c): a step of it, and nothing that reads or writes program
+     * memory, commands and tasks, until it is done. Counted as a byte code: the brick does not sleep meanwhile. */
+    if (mem_step(&k->vm))
+        return 1;
     if (ir_poll_due(k))
         ir_poll(k);
     /* GoIntoBootMode: the acknowledgement and its echo must be through before the ROM takes the link over, and a

@@ -67,7 +67,8 @@ static inline void rt_skip(struct rcx_brick *k, u8 n)
 }
 
 /* Main-loop work: complete packets are executed and answered, transmit requests sent, then up to `budget` byte
- * codes run. Returns the byte codes executed. */
+ * codes run. Returns the byte codes executed. While a move of program memory is left (RCX_MOVE_STEP), a step of it
+ * instead, counted as 1. */
 u16 rt_run(struct rcx_brick *k, u16 budget);
 
 /* A byte received on the IR link; `error` non-zero for a parity/framing/overrun error. */

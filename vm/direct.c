@@ -30,13 +30,12 @@ enum { DL_OK = 0, DL_NO_MEMORY = 1, DL_BAD_NUMBER = 2, DL_BLOCK_ERROR = 3, DL_NO
  * Tasks and subroutines are named here by their place among the selected slot's code objects (rcx.h): subroutine n
  * is n, task n is RCX_SUBS + n, and rcx_obj_sub(b->prog, id) its code object either way.
  *
- * Before a task's or subroutine's code goes: the task is stopped, or the tasks inside the subroutine are (a task
- * leaves a subroutine's code for good when it is stopped). Then the code is deleted, unless it is still being
- * downloaded: the download stays active (reference-firmware.md).
+ * Before a task's or subroutine's code goes (mem_delete, vm/progmem.c): the task is stopped, or the tasks inside the
+ * subroutine are (a task leaves a subroutine's code for good when it is stopped).
  */
 static void release(struct rcx *b, u8 id)
 {
-    u8 n, obj;
+    u8 n;
 
     /* The task itself (id - RCX_SUBS wraps past every task for a subroutine), or every task inside the subroutine
      * (a task's sub and ret_sub are subroutines or RCX_NO_SUB, never a task's id). A task in its own body
@@ -47,9 +46,6 @@ static void release(struct rcx *b, u8 id)
         if (n == (u8)(id - RCX_SUBS) || t->sub == id || (t->has_ret && t->ret_sub == id))
             sched_stop_task(b, n);
     }
-    obj = rcx_obj_sub(b->prog, id);
-    if (!(b->dl.active && b->dl.obj == obj))
-        mem_delete(b, obj);
 }
 
 /* 0x25, 0x35: opcode, 0, number, 0, size(2). */
@@ -65,17 +61,17 @@ static u8 begin_download(struct rcx *b, const u8 *cmd)
         id = 0xFF;
     if (b->dl.active) {            /* any new download, even a refused one, abandons the unfinished one: */
         b->dl.active = 0;          /* that slot ends up empty */
-        mem_delete(b, b->dl.obj);
+        mem_resize(b, b->dl.obj, 1, 0);
     }
     if (id == 0xFF)
         return DL_BAD_NUMBER;
     b->dl.obj = rcx_obj_sub(b->prog, id); /* only read while dl.active */
     /* mem_resize() refuses exactly what does not fit, and then changes nothing: the old code stays as it was. Once
-     * it fits, the old code goes (its tasks stopped) and the new one starts as zeros. */
-    if (!mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4)))
+     * it fits, the old code goes (its tasks stopped): its bytes are overwritten by the blocks (one resize, one move of
+     * the memory). */
+    if (!mem_resize(b, b->dl.obj, 1, RCX_LE16(cmd + 4)))
         return DL_NO_MEMORY;
     release(b, id);
-    mem_resize(b, b->dl.obj, RCX_LE16(cmd + 4));
     b->dl.active = 1;
     b->dl.expect = 1;
     b->dl.last = 0xFFFF;
@@ -109,15 +105,15 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     b->dl.filled = (u16)(b->dl.filled + count);
     b->dl.last = seq;
     b->dl.expect = (u16)(seq + 1); /* (after the last block, 0, nothing more is expected) */
+#if RCX_SWAN
+    swan_block(b, end - count, count); /* written, looked at for Swan code; the last ends the download (vm/swan.c) */
+#else
     memcpy(b->arena + at, end - count, count);
     if (!b->dl.last) {             /* the last block: the code may run from now on */
         b->dl.active = 0;
-#if RCX_SWAN
-        swan_download_done(b); /* the object's final size, and its slot's kind (vm/swan.c) */
-#else
-        mem_resize(b, b->dl.obj, b->dl.filled);
-#endif
+        mem_resize(b, b->dl.obj, 1, b->dl.filled);
     }
+#endif
     return DL_OK;
 }
 
@@ -185,9 +181,11 @@ u8 vm_direct(struct rcx *b, const u8 *cmd, u8 len, u8 *out)
             id = (u8)(id + cmd[1]);
             n = 1;
         }
+        c = n;
         do
-            release(b, id++);
-        while (--n);
+            release(b, (u8)(id + --n));
+        while (n);
+        mem_delete(b, id, c);      /* all at once: one move of the memory (vm/progmem.c) */
         return 1;
     }
     case D_UNLOCK_BRICK:

@@ -29,31 +29,84 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
     return mem_obj_size(b, obj) != 0;
 }
 
-/* Keeps the first min(old, new) bytes of the object; bytes it gains are zero. */
-u8 mem_resize(struct rcx *b, u8 obj, u16 size)
+/*
+ * What follows the objects moves by the difference: at once, or, with RCX_MOVE_STEP (the brick), a pass of the main
+ * loop at a time (mem_step), so that a command on a full memory never holds the IR link and the buttons for long
+ * (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's, and a
+ * move left by an earlier resize is completed first (a command makes one resize but for rare cases: mem_delete, and
+ * a download abandoned by the next BeginOfTask/Sub).
+ */
+u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
 {
-    u16 *start = &b->obj_start[obj + 1];
-    u16 tail = *start, old = (u16)(tail - start[-1]), end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
-    u16 delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative: the offsets add it alike */
+    u16 *start = &b->obj_start[obj], *last = start + n;
+    u16 first = *start, tail = *last, end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
+    u16 old = (u16)(tail - first), delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative */
     u8 *at = b->arena + tail;
+#if RCX_MOVE_STEP
+    struct rcx_move *m = &b->move;
+#endif
 
-    if (size > old && delta > (u16)(RCX_ARENA_SIZE - end))
+    if (size > (u16)(RCX_ARENA_SIZE - end + old))
         return 0;                  /* growth needs the room */
-    end = (u16)(end - tail);       /* bytes after the object, up to the datalog's end */
+    end = (u16)(end - tail);       /* bytes after the objects, up to the datalog's end */
+    while (++start < last)
+        *start = first;
     for (; start <= &b->obj_start[RCX_OBJS]; start++)
         *start = (u16)(*start + delta);
-    /* What follows the object moves by delta either way, as a signed number now that a growth is known to be less
-     * than the arena (a shrinkage moves it down). */
+#if RCX_MOVE_STEP
+    while (mem_step(b))
+        ;
+    m->from = at;
+    m->to = at + delta;
+    m->len = end;
+#else
+    /* What follows the objects moves by delta either way, as a signed number now that a growth is known to be less
+     * than the arena (a shrinkage moves it down). The bytes gained keep what was there, as on the brick, until the
+     * blocks of a download overwrite them. */
     memmove(at + (s16)delta, at, end);
-    if ((s16)delta > 0)            /* the bytes gained are zero */
-        memset(at, 0, delta);
+#endif
     return 1;
 }
 
-void mem_delete(struct rcx *b, u8 obj)
+/* The selected slot's subroutines or tasks id to id + count - 1 (numbered as vm/direct.c does), whose tasks are
+ * stopped, go at once (one move of the memory), but for the code still being downloaded: the download stays active
+ * (reference-firmware.md). */
+void mem_delete(struct rcx *b, u8 id, u8 count)
 {
-    mem_resize(b, obj, 0);
+    u8 obj = rcx_obj_sub(b->prog, id), k = (u8)(b->dl.obj - obj);
+
+    if (b->dl.active && k < count) { /* the objects after it go, then those before */
+        mem_resize(b, (u8)(b->dl.obj + 1), (u8)(count - k - 1), 0);
+        count = k;
+    }
+    mem_resize(b, obj, count, 0);
 }
+
+#if RCX_MOVE_STEP
+/* RCX_MOVE_STEP bytes of the move (downwards from its start, upwards from its end, so that nothing is overwritten
+ * before it is moved); 0 when there was none. The bytes an object gains keep what was there until its blocks come. */
+u8 mem_step(struct rcx *b)
+{
+    struct rcx_move *m = &b->move;
+    u16 n = m->len, left;
+    u8 *to = m->to, *from = m->from;
+
+    if (!n)
+        return 0;
+    if (n > RCX_MOVE_STEP)
+        n = RCX_MOVE_STEP;
+    m->len = left = (u16)(m->len - n);
+    if (to < from) {               /* downwards: the first bytes, and the move goes on after them */
+        m->to = to + n;
+        m->from = from + n;
+    } else {                       /* upwards: the last */
+        to += left;
+        from += left;
+    }
+    memmove(to, from, n);
+    return 1;
+}
+#endif
 
 static u8 *put_word(u8 *p, u16 w)
 {

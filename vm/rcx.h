@@ -65,6 +65,13 @@ struct rcx_download {
     u16 filled;     /* bytes written so far */
 };
 
+/* Program memory's bytes still to be moved after a resize (vm/progmem.c, RCX_MOVE_STEP): the `len` bytes at `from`
+ * belong at `to`. */
+struct rcx_move {
+    u8 *from, *to;
+    u16 len;
+};
+
 struct rcx {
     /* Program memory: code objects packed in obj order, then the datalog, then free space. */
     u16 obj_start[RCX_OBJS + 1]; /* offsets; obj_start[RCX_OBJS] is the end of code */
@@ -117,6 +124,13 @@ struct rcx {
     u8 tx_range;           /* PbTXPower: 0 short, 1 long */
     u8 boot_mode;          /* GoIntoBootMode accepted */
     u8 sensors_rest;       /* sensors_at_rest() found every input steady; cleared when that may end */
+
+    struct rcx_move move;  /* nothing that reads or writes program memory runs while len is not 0 */
+#if RCX_SWAN
+    u16 dl_scan;    /* the download's first instruction not looked at for Swan code yet (swan_block) */
+    u8 dl_swan;     /* the download has Swan code */
+    u8 spare2;
+#endif
 
     void *port;     /* the hardware port's own data for this brick (host simulator); the machine never uses it */
 
@@ -174,8 +188,16 @@ u16 mem_free(const struct rcx *b);
 u16 mem_obj_size(const struct rcx *b, u8 obj);
 static inline const u8 *mem_obj_code(const struct rcx *b, u8 obj) { return b->arena + b->obj_start[obj]; } /* (tests) */
 u8 mem_obj_runnable(const struct rcx *b, u8 obj);
-u8 mem_resize(struct rcx *b, u8 obj, u16 size); /* 0 when memory is short; contents of obj are lost */
-void mem_delete(struct rcx *b, u8 obj);
+/* Objects obj to obj + n - 1 as one of `size` bytes (the last; the others empty), which keeps their first bytes: 0
+ * when memory is short, and then nothing changed. */
+u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size);
+void mem_delete(struct rcx *b, u8 id, u8 n); /* the selected slot's objects id to id + n - 1 (vm/direct.c), all
+                                                 * but the one being downloaded */
+#if RCX_MOVE_STEP
+u8 mem_step(struct rcx *b); /* a step of the move a resize left; 0: none was left */
+#else
+#define mem_step(b) ((void)(b), 0)
+#endif
 u8 mem_memmap(const struct rcx *b, u8 *out); /* the 188 data bytes of the MemMap reply */
 
 /* Datalog (vm/datalog.c). */
@@ -192,7 +214,9 @@ s16 ops_arith(s16 a, s16 v, u8 kind); /* a op v for kind ARITH_* (rcx_opcodes.h)
 void ops_set_message(struct rcx *b, u8 m); /* and tell the events */
 /* Swan's opcodes (vm/swan.c): run the instruction of row r (a stack overflow or underflow stops the task). */
 void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rcx_swan_row *r);
-void swan_download_done(struct rcx *b); /* the last block came: the object's size, then its slot's kind */
+/* A download's block of `count` bytes at `src`, checked: written, looked at for Swan code; the last (number 0) ends the
+ * download (the object's final size, then its slot's kind). */
+void swan_block(struct rcx *b, const u8 *src, u16 count);
 
 void ops_var(struct rcx *b, struct rcx_task *t, const u8 *ins); /* 0x14-0x94: v op= S */
 void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's WaitMS */

@@ -277,6 +277,52 @@ static void swan_program_detection(void **state)
     }
 }
 
+/* Task 0 of a new brick, downloaded in blocks of `size` bytes; the slot's kind. */
+static u8 kind_in_blocks(const u8 *code, unsigned len, unsigned size)
+{
+    struct rcx *b = brick_new();
+    u8 begin[6] = { 0x25, 0, 0, 0, (u8)len, 0 }, block[6 + 32], r[RCX_REPLY_MAX], kind;
+    unsigned at, i, n;
+
+    assert_int_equal(brick_cmd(b, begin, sizeof begin, r), 2);
+    assert_int_equal(r[1], 0);
+    for (at = 0; at < len; at += n) {
+        n = len - at < size ? len - at : size;
+        block[0] = 0x45;
+        block[1] = (u8)(at + n < len ? 1 + at / size : 0); /* 1, 2, ..., the last 0 */
+        block[2] = 0;
+        block[3] = (u8)n;
+        block[4] = 0;
+        block[5 + n] = 0;
+        for (i = 0; i < n; i++)
+            block[5 + n] = (u8)(block[5 + n] + (block[5 + i] = code[at + i]));
+        assert_int_equal(brick_cmd(b, block, 6 + n, r), 2);
+        assert_int_equal(r[1], 0);
+    }
+    kind = b->swan[0];
+    brick_free(b);
+    return kind;
+}
+
+/* The kind is found as the blocks come (vm/swan.c, swan_block), walked instruction by instruction whatever the blocks'
+ * sizes: a Swan opcode's byte inside an operand is none, SCheckDo's source is read when it comes in the next block.
+ * (Plain code, then Swan's: no such program runs here.) */
+static void swan_code_found_whatever_the_blocks(void **state)
+{
+    static const u8 plain[] = { SETV(1, CONST, 0x2B2B), 0x95, 0x03, CONST, 0, 0, 1, 5, 0x2B, /* LCheckDo: 7 bytes */
+                                0x85, 0x03, CONST, 0, 0, 1, 5, SETV(40, CONST, 0x47C7), 0x01 };
+    static const u8 test_only[] = { SETV(1, CONST, 0x2B2B), 0x85, 0x03, GVAR, 0, 0, 1, 5, SETV(40, CONST, 9) };
+    static const u8 last_op[] = { SETV(1, CONST, 0x2B2B), SETV(2, CONST, 3), 0x2B, 1, 7 }; /* setgb 1, 7 */
+    unsigned size;
+    (void)state;
+    for (size = 1; size <= 22; size++) {
+        assert_int_equal(kind_in_blocks(plain, sizeof plain - 1, size), 0);
+        assert_int_equal(kind_in_blocks(test_only, sizeof test_only, size), 1);
+        assert_int_equal(kind_in_blocks(last_op, sizeof last_op, size), 1);
+    }
+    assert_int_equal(kind_in_blocks(plain, sizeof plain, 8), 1); /* a truncated last instruction: pop, Swan's */
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 /* Time: WaitMS (0x47) and the 1 ms timers (source 22). */
 
@@ -596,6 +642,7 @@ int main(void)
         cmocka_unit_test(sources_43_and_44),
         cmocka_unit_test(overlay_and_source_0),
         cmocka_unit_test(swan_program_detection),
+        cmocka_unit_test(swan_code_found_whatever_the_blocks),
         cmocka_unit_test(wait_ms_and_ms_timers),
         cmocka_unit_test(ms_timer_counts_wraps_and_is_written),
         cmocka_unit_test(clear_all),

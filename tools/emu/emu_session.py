@@ -178,17 +178,22 @@ class Brick:
         rc, out, _ = self.nqc(*args, timeout=timeout)
         return rc == 0, out
 
-    def reply_latency_ms(self, mark=0):
-        """Time from the end of the last host packet after `mark` (IR log offset) to the brick's first byte after it,
-        minus the packet's time on the air (the emulator takes bytes in at 2400 baud, 11 bits each)."""
+    def reply_latencies_ms(self, mark=0):
+        """Time from the end of each host packet after `mark` (IR log offset) that got an answer to the brick's first
+        byte after it, minus the packet's time on the air (the emulator takes bytes in at 2400 baud, 11 bits each)."""
         with open(self.irlog) as f:
             f.seek(mark)
             rows = [line.split(None, 2) for line in f if line.strip()]
-        lat = None
+        lats = []
         for i, (t, who, data) in enumerate(rows):
             if who != "host":
                 continue
             nxt = [float(r[0]) for r in rows[i + 1:] if r[1].startswith("emu")]
             if nxt:
-                lat = (nxt[0] - float(t) - len(bytes.fromhex(data)) * 11 / 2400.0) * 1000
-        return lat
+                lats.append((nxt[0] - float(t) - len(bytes.fromhex(data)) * 11 / 2400.0) * 1000)
+        return lats
+
+    def reply_latency_ms(self, mark=0):
+        """The last host packet's (reply_latencies_ms), or None."""
+        lats = self.reply_latencies_ms(mark)
+        return lats[-1] if lats else None
