@@ -32,3 +32,12 @@ ___rcx_ret6_f2:
 	mov.w	@r7+,r4
 	adds	#2,r7
 	rts
+
+; The shared prologue (a call here in place of pushing r4, r5, r6): the return address becomes the slot of r4.
+	.global	___rcx_save6
+___rcx_save6:
+	mov.w	@r7,r3			; where the function goes on (r3 holds no argument)
+	mov.w	r4,@r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
+	jmp	@r3

@@ -24,15 +24,21 @@ _c:
 _r:
 	jsr	@r2
 	rts
-; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump)
+; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); two pushes only:
+; no shared prologue
 _d:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
 	jsr	@_g
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
-; shared: two bytes of locals popped after the registers
+; shared: r4-r6 pushed first thing (the shared prologue), two bytes of locals popped after the registers
 _e:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
 	mov.w	r0,r1
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
@@ -53,8 +59,11 @@ _f:
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
-; not in the list: left as it is
+; not in the list: left as it is (its prologue too)
 _h:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4

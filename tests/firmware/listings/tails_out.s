@@ -21,12 +21,16 @@ _c:
 ; a call through a register right before the return
 _r:
 	jmp	@r2
-; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump)
+; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); two pushes only:
+; no shared prologue
 _d:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
 	jsr	@_g
 	jmp	@___rcx_ret6
-; shared: two bytes of locals popped after the registers
+; shared: r4-r6 pushed first thing (the shared prologue), two bytes of locals popped after the registers
 _e:
+	jsr	@___rcx_save6
 	mov.w	r0,r1
 	jmp	@___rcx_ret6_f2
 ; shared: a call's stack argument popped before the registers
@@ -37,8 +41,11 @@ _f:
 	mov.w	@r7+,r6
 .L1:
 	jmp	@___rcx_ret5
-; not in the list: left as it is
+; not in the list: left as it is (its prologue too)
 _h:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
