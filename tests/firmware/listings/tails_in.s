@@ -68,8 +68,9 @@ _h:
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
-; long jumps (gcc's jump round a jmp, when the place is out of a branch's reach): the opposite branch to an identical
-; jmp within reach instead; a jmp to a label where a jmp follows jumps there itself (outside the list too)
+; long jumps (gcc's jump round a jmp, when the place is out of a branch's reach): the opposite branch to the place
+; when the listing shows it in reach (.L5), else to an identical jmp within reach; a jmp to a label where a jmp
+; follows jumps there itself (outside the list too)
 _j:
 	cmp.b	#1,r0l
 	bne	.Lh8BR1

@@ -50,14 +50,15 @@ _h:
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
-; long jumps (gcc's jump round a jmp, when the place is out of a branch's reach): the opposite branch to an identical
-; jmp within reach instead; a jmp to a label where a jmp follows jumps there itself (outside the list too)
+; long jumps (gcc's jump round a jmp, when the place is out of a branch's reach): the opposite branch to the place
+; when the listing shows it in reach (.L5), else to an identical jmp within reach; a jmp to a label where a jmp
+; follows jumps there itself (outside the list too)
 _j:
 	cmp.b	#1,r0l
-	beq	.Lrcxj70
+	beq	.L5
 .Lh8BR1:
 	cmp.b	#2,r0l
-	bhi	.Lrcxj70
+	bhi	.Lrcxj1_71
 .Lh8BR2:
 	cmp.b	#3,r0l
 	beq	.Lh8BR3
@@ -65,7 +66,7 @@ _j:
 .Lh8BR3:
 	rts
 .L5:
-.Lrcxj70:
+.Lrcxj1_71:
 	jmp	@_g
 	.section .hitext
 ; in the list, but not in .text: only the call becomes a jump
