@@ -293,7 +293,11 @@ OP(op_user_view)
         display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
 }
 /* The event engine checks event numbers, sources and types itself (spec p. 70). */
-OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
+static RCX_HIGH_CODE void op_set_event(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
+{
+    UNUSED_T;
+    events_set(b, ins[1], ins[2], ins[3]);
+}
 static RCX_HIGH_CODE void op_calibrate(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (the last room at F000) */
 {
     UNUSED_T;
