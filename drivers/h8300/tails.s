@@ -41,3 +41,17 @@ ___rcx_save6:
 	mov.w	r5,@-r7
 	mov.w	r6,@-r7
 	jmp	@r3
+
+; With room for 2 or 4 bytes of locals first (where the return address was, and 2 bytes more).
+	.global	___rcx_save6_f4
+	.global	___rcx_save6_f2
+___rcx_save6_f4:
+	mov.w	@r7,r3
+	subs	#2,r7
+	bra	1f
+___rcx_save6_f2:
+	mov.w	@r7,r3
+1:	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
+	jmp	@r3

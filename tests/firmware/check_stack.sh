@@ -3,7 +3,7 @@
 # Worst-case stack use of the firmware, from its disassembly, against the room the link left for the stack.
 #
 # Each function's frame is followed instruction by instruction (pushes, pops, adds/subs and add.w of a loaded
-# constant to r7, a call of the shared prologue ___rcx_save6 as the 3 pushes it makes); a call adds the caller's
+# constant to r7, a call of a shared prologue ___rcx_save6* as the pushes it makes); a call adds the caller's
 # depth at that point plus the return address to the callee's own worst case. A call through a register (a handler
 # table) may reach any function whose address the program takes: one
 # loaded as a constant by an instruction, or stored as a word among the constants after the code (main and the
@@ -22,10 +22,10 @@ scan() {
         function hex(s,   i, v) { v = 0; s = toupper(s)
             for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
             return v }
-        BEGIN {    # the shared prologue (drivers/h8300/tails.s): a call of it leaves r4-r6 pushed, 6 bytes
-            save = -1
+        BEGIN {    # the shared prologues (drivers/h8300/tails.s): a call leaves r4-r6 pushed (6 bytes), and locals
             while ((getline l < listing) > 0)
-                if (l ~ /^[0-9a-f]+ <___rcx_save6>:$/) save = hex(substr(l, 1, index(l, " ") - 1))
+                if (l ~ /^[0-9a-f]+ <___rcx_save6(_f[24])?>:$/)
+                    save[hex(substr(l, 1, index(l, " ") - 1))] = l ~ /_f/ ? 6 + substr(l, length(l) - 2, 1) : 6
             close(listing) }
         FNR == 1 { file++ }
         file == 2 && /^ [0-9a-f]+ [0-9a-f]/ {    # constants: every aligned word may be a function pointer
@@ -48,8 +48,8 @@ scan() {
                 split(arg, a, ","); imm[a[2]] = hex(substr(a[1], 4)); word[imm[a[2]]] = 1 }
             else if (op == "add.w" && arg ~ /,r7$/) { split(arg, a, ","); v = imm[a[1]]; if (v >= 32768) v -= 65536; off -= v }
             else if ((op == "jsr" || op == "bsr") && match(arg, /0x[0-9a-f]+/) \
-                     && hex(substr(arg, RSTART + 2, RLENGTH - 2)) == save)
-                off += 6
+                     && (hex(substr(arg, RSTART + 2, RLENGTH - 2)) in save))
+                off += save[hex(substr(arg, RSTART + 2, RLENGTH - 2))]
             else if (op == "jsr" || op == "bsr" || op == "jmp") {
                 if (match(arg, /0x[0-9a-f]+/)) {
                     ncall[f]++; callee[f, ncall[f]] = hex(substr(arg, RSTART + 2, RLENGTH - 2))

@@ -45,8 +45,12 @@ _e:
 	mov.w	@r7+,r4
 	adds	#2,r7
 	rts
-; shared: a call's stack argument popped before the registers
+; shared: a call's stack argument popped before the registers; the prologue after 2 bytes of locals
 _a6:
+	subs	#2,r7
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
 	adds	#2,r7
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5

@@ -33,8 +33,9 @@ _e:
 	jsr	@___rcx_save6
 	mov.w	r0,r1
 	jmp	@___rcx_ret6_f2
-; shared: a call's stack argument popped before the registers
+; shared: a call's stack argument popped before the registers; the prologue after 2 bytes of locals
 _a6:
+	jsr	@___rcx_save6_f2
 	jmp	@___rcx_ret_a6
 ; a label inside the epilogue (a branch target): only what follows it is shared
 _f:
@@ -58,7 +59,7 @@ _j:
 	beq	.L5
 .Lh8BR1:
 	cmp.b	#2,r0l
-	bhi	.Lrcxj1_71
+	bhi	.Lrcxj1_72
 .Lh8BR2:
 	cmp.b	#3,r0l
 	beq	.Lh8BR3
@@ -66,7 +67,7 @@ _j:
 .Lh8BR3:
 	rts
 .L5:
-.Lrcxj1_71:
+.Lrcxj1_72:
 	jmp	@_g
 	.section .hitext
 ; in the list, but not in .text: only the call becomes a jump
