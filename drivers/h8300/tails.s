@@ -55,3 +55,19 @@ ___rcx_save6_f2:
 	mov.w	r5,@-r7
 	mov.w	r6,@-r7
 	jmp	@r3
+
+; r4, r5 pushed, and the first argument (r0) kept in r4 or r5.
+	.global	___rcx_save5_r4
+	.global	___rcx_save5_r5
+___rcx_save5_r4:
+	mov.w	@r7,r3
+	mov.w	r4,@r7
+	mov.w	r0,r4
+	mov.w	r5,@-r7
+	jmp	@r3
+___rcx_save5_r5:
+	mov.w	@r7,r3
+	mov.w	r4,@r7
+	mov.w	r5,@-r7
+	mov.w	r0,r5
+	jmp	@r3

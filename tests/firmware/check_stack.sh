@@ -22,10 +22,11 @@ scan() {
         function hex(s,   i, v) { v = 0; s = toupper(s)
             for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
             return v }
-        BEGIN {    # the shared prologues (drivers/h8300/tails.s): a call leaves r4-r6 pushed (6 bytes), and locals
+        BEGIN {    # the shared prologues (drivers/h8300/tails.s): a call leaves r4-r6 or r4-r5 pushed, and locals
             while ((getline l < listing) > 0)
-                if (l ~ /^[0-9a-f]+ <___rcx_save6(_f[24])?>:$/)
-                    save[hex(substr(l, 1, index(l, " ") - 1))] = l ~ /_f/ ? 6 + substr(l, length(l) - 2, 1) : 6
+                if (l ~ /^[0-9a-f]+ <___rcx_save(6|6_f[24]|5_r[45])>:$/)
+                    save[hex(substr(l, 1, index(l, " ") - 1))] = (l ~ /save5/ ? 4 : 6) \
+                                                                 + (l ~ /_f/ ? substr(l, length(l) - 2, 1) : 0)
             close(listing) }
         FNR == 1 { file++ }
         file == 2 && /^ [0-9a-f]+ [0-9a-f]/ {    # constants: every aligned word may be a function pointer

@@ -24,11 +24,12 @@ _c:
 _r:
 	jsr	@r2
 	rts
-; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); two pushes only:
-; no shared prologue
+; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); r4, r5 pushed and
+; the first argument kept in r4: ___rcx_save5_r4
 _d:
 	mov.w	r4,@-r7
 	mov.w	r5,@-r7
+	mov.w	r0,r4
 	jsr	@_g
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5

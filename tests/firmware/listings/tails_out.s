@@ -21,11 +21,10 @@ _c:
 ; a call through a register right before the return
 _r:
 	jmp	@r2
-; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); two pushes only:
-; no shared prologue
+; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); r4, r5 pushed and
+; the first argument kept in r4: ___rcx_save5_r4
 _d:
-	mov.w	r4,@-r7
-	mov.w	r5,@-r7
+	jsr	@___rcx_save5_r4
 	jsr	@_g
 	jmp	@___rcx_ret6
 ; shared: r4-r6 pushed first thing (the shared prologue), two bytes of locals popped after the registers
@@ -59,7 +58,7 @@ _j:
 	beq	.L5
 .Lh8BR1:
 	cmp.b	#2,r0l
-	bhi	.Lrcxj1_72
+	bhi	.Lrcxj1_71
 .Lh8BR2:
 	cmp.b	#3,r0l
 	beq	.Lh8BR3
@@ -67,7 +66,7 @@ _j:
 .Lh8BR3:
 	rts
 .L5:
-.Lrcxj1_72:
+.Lrcxj1_71:
 	jmp	@_g
 	.section .hitext
 ; in the list, but not in .text: only the call becomes a jump
