@@ -182,7 +182,12 @@ OP(op_turn_off)
     if (b->power_down_min) /* ignored when the power-down time is 0 (reference-firmware.md) */
         b->turn_off = 1;
 }
-OP(op_clear_sound) { UNUSED_T; UNUSED_INS; sound_clear(b); }
+static RCX_HIGH_CODE void op_clear_sound(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
+{
+    UNUSED_T;
+    UNUSED_INS;
+    sound_clear(b);
+}
 void ops_set_message(struct rcx *b, u8 m)
 {
     b->message = m;
@@ -293,7 +298,11 @@ OP(op_user_view)
         display_user(b, ins[2], ins[3], RCX_LE16(ins + 4));
 }
 /* The event engine checks event numbers, sources and types itself (spec p. 70). */
-OP(op_set_event) { UNUSED_T; events_set(b, ins[1], ins[2], ins[3]); }
+static RCX_HIGH_CODE void op_set_event(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
+{
+    UNUSED_T;
+    events_set(b, ins[1], ins[2], ins[3]);
+}
 static RCX_HIGH_CODE void op_calibrate(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (the last room at F000) */
 {
     UNUSED_T;

@@ -3,8 +3,9 @@
 # Worst-case stack use of the firmware, from its disassembly, against the room the link left for the stack.
 #
 # Each function's frame is followed instruction by instruction (pushes, pops, adds/subs and add.w of a loaded
-# constant to r7); a call adds the caller's depth at that point plus the return address to the callee's own worst
-# case. A call through a register (a handler table) may reach any function whose address the program takes: one
+# constant to r7, a call of a shared prologue ___rcx_save6* as the pushes it makes); a call adds the caller's
+# depth at that point plus the return address to the callee's own worst case. A call through a register (a handler
+# table) may reach any function whose address the program takes: one
 # loaded as a constant by an instruction, or stored as a word among the constants after the code (main and the
 # interrupt entries excepted: only the CPU calls those); it counts as the deepest of them. The deepest chain from main, plus the deepest interrupt (interrupts do not nest: the CPU masks
 # them) and the 8 bytes the CPU and the ROM's trampoline push before a handler runs, must fit between the on-chip
@@ -17,10 +18,16 @@
 #        check_stack.sh scan <disassembly> <stack bytes> [<objdump -s dump of the constants>]
 set -e
 scan() {
-    awk -v room="$2" '
+    awk -v room="$2" -v listing="$1" '
         function hex(s,   i, v) { v = 0; s = toupper(s)
             for (i = 1; i <= length(s); i++) v = v * 16 + index("0123456789ABCDEF", substr(s, i, 1)) - 1
             return v }
+        BEGIN {    # the shared prologues (drivers/h8300/tails.s): a call leaves r4-r6 or r4-r5 pushed, and locals
+            while ((getline l < listing) > 0)
+                if (l ~ /^[0-9a-f]+ <___rcx_save(6|6_f[24]|5_r[45])>:$/)
+                    save[hex(substr(l, 1, index(l, " ") - 1))] = (l ~ /save5/ ? 4 : 6) \
+                                                                 + (l ~ /_f/ ? substr(l, length(l) - 2, 1) : 0)
+            close(listing) }
         FNR == 1 { file++ }
         file == 2 && /^ [0-9a-f]+ [0-9a-f]/ {    # constants: every aligned word may be a function pointer
             base = hex($1)
@@ -41,6 +48,9 @@ scan() {
             else if (op == "mov.w" && arg ~ /^#0x/) {
                 split(arg, a, ","); imm[a[2]] = hex(substr(a[1], 4)); word[imm[a[2]]] = 1 }
             else if (op == "add.w" && arg ~ /,r7$/) { split(arg, a, ","); v = imm[a[1]]; if (v >= 32768) v -= 65536; off -= v }
+            else if ((op == "jsr" || op == "bsr") && match(arg, /0x[0-9a-f]+/) \
+                     && (hex(substr(arg, RSTART + 2, RLENGTH - 2)) in save))
+                off += save[hex(substr(arg, RSTART + 2, RLENGTH - 2))]
             else if (op == "jsr" || op == "bsr" || op == "jmp") {
                 if (match(arg, /0x[0-9a-f]+/)) {
                     ncall[f]++; callee[f, ncall[f]] = hex(substr(arg, RSTART + 2, RLENGTH - 2))

@@ -21,28 +21,53 @@ _c:
 ; a call through a register right before the return
 _r:
 	jmp	@r2
-; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump)
+; shared: after a call, r6-r4 popped (the shared copy is shorter than the pops and a jump); r4, r5 pushed and
+; the first argument kept in r4: ___rcx_save5_r4
 _d:
+	jsr	@___rcx_save5_r4
 	jsr	@_g
 	jmp	@___rcx_ret6
-; shared: two bytes of locals popped after the registers
+; shared: r4-r6 pushed first thing (the shared prologue), two bytes of locals popped after the registers
 _e:
+	jsr	@___rcx_save6
 	mov.w	r0,r1
 	jmp	@___rcx_ret6_f2
-; shared: a call's stack argument popped before the registers
+; shared: a call's stack argument popped before the registers; the prologue after 2 bytes of locals
 _a6:
+	jsr	@___rcx_save6_f2
 	jmp	@___rcx_ret_a6
 ; a label inside the epilogue (a branch target): only what follows it is shared
 _f:
 	mov.w	@r7+,r6
 .L1:
 	jmp	@___rcx_ret5
-; not in the list: left as it is
+; not in the list: left as it is (its prologue too)
 _h:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
 	mov.w	@r7+,r6
 	mov.w	@r7+,r5
 	mov.w	@r7+,r4
 	rts
+; long jumps (gcc's jump round a jmp, when the place is out of a branch's reach): the opposite branch to the place
+; when the listing shows it in reach (.L5), else to an identical jmp within reach; a jmp to a label where a jmp
+; follows jumps there itself (outside the list too)
+_j:
+	cmp.b	#1,r0l
+	beq	.L5
+.Lh8BR1:
+	cmp.b	#2,r0l
+	bhi	.Lrcxj1_71
+.Lh8BR2:
+	cmp.b	#3,r0l
+	beq	.Lh8BR3
+	jmp	@_h
+.Lh8BR3:
+	rts
+.L5:
+.Lrcxj1_71:
+	jmp	@_g
 	.section .hitext
 ; in the list, but not in .text: only the call becomes a jump
 _k:
