@@ -182,7 +182,7 @@ OP(op_turn_off)
     if (b->power_down_min) /* ignored when the power-down time is 0 (reference-firmware.md) */
         b->turn_off = 1;
 }
-static RCX_HIGH_CODE void op_clear_sound(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
+static void op_clear_sound(struct rcx *b, struct rcx_task *t, const u8 *ins)
 {
     UNUSED_T;
     UNUSED_INS;
