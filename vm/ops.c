@@ -182,7 +182,7 @@ OP(op_turn_off)
     if (b->power_down_min) /* ignored when the power-down time is 0 (reference-firmware.md) */
         b->turn_off = 1;
 }
-static void op_clear_sound(struct rcx *b, struct rcx_task *t, const u8 *ins)
+static RCX_HIGH_CODE void op_clear_sound(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
 {
     UNUSED_T;
     UNUSED_INS;
@@ -207,7 +207,7 @@ OP(op_message)
 }
 RCX_STATIC_ASSERT(mute_ops, !(RCX_OP_MUTE & 0x20) && (RCX_OP_UNMUTE & 0x20)); /* bit 5 tells them apart */
 OP(op_mute) { UNUSED_T; sound_mute(b, (u8)(ins[0] & 0x20 ? 0 : 1)); }
-static void op_clear_events(struct rcx *b, struct rcx_task *t, const u8 *ins)
+static RCX_HIGH_CODE void op_clear_events(struct rcx *b, struct rcx_task *t, const u8 *ins) /* (room at F000) */
 {
     UNUSED_T;
     UNUSED_INS;
