@@ -396,6 +396,20 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
  * (events_look_again()). A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a
  * look at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
  * than here, in the registers it took. */
+#ifdef __H8300__
+/* On the brick events_window() is drivers/h8300/eventwindow.S (some 40 bytes fewer than gcc 3.4's code for the C
+ * below); the C here is its reference (tests/drivers/test_h8window.c compares the two). */
+#include "sensorfeed.h"
+#include <stddef.h>
+RCX_STATIC_ASSERT(ew_layout, offsetof(struct rcx, event) == SF_EVENT && sizeof(struct rcx_event) == EV_SIZE
+                             && RCX_EVENTS == 16 && offsetof(struct rcx_event, source) == EV_SOURCE
+                             && offsetof(struct rcx_event, type) == EV_TYPE
+                             && offsetof(struct rcx_event, state) == EV_STATE
+                             && offsetof(struct rcx_event, upper) == EV_UPPER
+                             && offsetof(struct rcx_event, lower) == EV_LOWER);
+RCX_STATIC_ASSERT(ew_states, RCX_EVENT_LOW == 8 && RCX_EVENT_STATE_LOW == 0 && RCX_EVENT_STATE_NORMAL == 1
+                             && RCX_EVENT_STATE_HIGH == 2 && EVENTS_WINDOW_NONE == SF_WINDOW_NONE);
+#else
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
 {
     struct rcx_event *e = b->event;
@@ -430,6 +444,7 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
     in->lo = lo;
     in->hi = hi;
 }
+#endif /* __H8300__ */
 
 /* Spec p. 63: behave as if these events had happened. Every task monitoring one of them takes its EV exit; the
  * events that reached it are kept for source 23. */
