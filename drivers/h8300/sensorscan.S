@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: MPL-2.0 */
-; The brick's sensor_scan() with sensors_at_rest() in it (vm/sensors.c, whose C is the reference and runs on the host), in fewer bytes than gcc 3.4's code, where the image is near its size budget
+; The brick's sensor_scan() with sensors_at_rest() in it, and events_look_again() (vm/sensors.c, vm/events.c, whose C
+; is the reference and runs on the host), in fewer bytes than gcc 3.4's code, where the image is near its size budget
 ; (issue 21). tests/drivers/test_h8feed.c runs them against the C.
 ;
 ; void sensor_scan(struct rcx *b, const u16 *raw)
@@ -12,6 +13,7 @@
 
 	.section .text
 	.global	_sensor_scan
+	.global	_events_look_again
 
 _sensor_scan:
 	mov.w	r4,@-r7
@@ -44,3 +46,17 @@ feed:	mov.w	r5,r0			; sensor_feed(b, input, *raw++), then the next input
 	addx	#0,r4h
 	.word	0x5A00,_sensor_feed	; jmp (ld --relax leaves it): its rts returns to the bsr
 
+; void events_look_again(struct rcx *b): every input moving, with no window (lo 0, hi -32768); b->sensors_rest 0.
+_events_look_again:
+	sub.w	r2,r2
+	mov.b	r2l,@(SF_REST,r0)
+	mov.w	#0x8000,r3
+	mov.b	#3,r1l			; RCX_SENSORS
+1:	mov.w	r2,@(SF_SENSOR+SF_QUIET,r0) ; SENSOR_MOVING
+	mov.w	r2,@(SF_SENSOR+SF_LO,r0)
+	mov.w	r3,@(SF_SENSOR+SF_HI,r0)
+	add.b	#SF_SIZE,r0l
+	addx	#0,r0h
+	dec	r1l
+	bne	1b
+	rts

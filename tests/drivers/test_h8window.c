@@ -3,6 +3,7 @@
  * The brick's events_window() (drivers/h8300/eventwindow.S, run in the H8/300 simulator) against its reference, the C
  * of vm/events.c compiled here for the host: random events (sources 0-10 and cleared, types 0-16, states 0-5, the
  * thresholds at and next to the ends of the 16-bit range or anywhere) and keys, lo and hi of the input compared.
+ * Then events_look_again() (drivers/h8300/sensorscan.S) from random inputs: the inputs and b->sensors_rest compared.
  */
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,6 +21,7 @@
 static const char *image_path, *nm_path;
 
 RCX_STATIC_ASSERT(window_layout, sizeof(struct rcx_event) == EV_SIZE && RCX_EVENTS == 16
+                                 && sizeof(struct rcx_sensor) == SF_SIZE
                                  && offsetof(struct rcx_event, upper) == EV_UPPER
                                  && offsetof(struct rcx_event, lower) == EV_LOWER
                                  && offsetof(struct rcx, event) - offsetof(struct rcx, sensor) == 66);
@@ -91,7 +93,7 @@ static void random_events(void **state)
         unsigned n = rnd(RCX_SENSORS), events = 1 + rnd(16);
         u8 key = rnd(8) ? EVENTS_KEY(n) : (u8)rnd(12);
         struct rcx_sensor *in = &host.sensor[n];
-        uint16_t in_at = (uint16_t)(H8_SENSORS + n * sizeof(struct rcx_sensor)); /* 22 bytes there too */
+        uint16_t in_at = (uint16_t)(H8_SENSORS + n * SF_SIZE);
         s16 lo, hi;
 
         for (i = 0; i < RCX_EVENTS; i++) {
@@ -122,10 +124,54 @@ static void random_events(void **state)
     print_message("%u runs: %u windows, %u with none\n", run, windows, none);
 }
 
+/* events_look_again(): each input's fields as the C leaves them, the image's other bytes as they were. b->sensors_rest
+ * lands beyond the scratch RAM, on the image's RAM vectors (no interrupt is taken here). */
+static void looks_again(void **state)
+{
+    const uint16_t rest_at = H8_B + SF_REST;
+    uint8_t before[RCX_SENSORS * SF_SIZE];
+    unsigned run, i, a;
+    long f;
+
+    (void)state;
+    assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
+    f = h8_sym("_events_look_again");
+    assert_true(f > 0);
+    for (run = 0; run < 1000; run++) {
+        for (a = 0; a < sizeof before; a++)
+            before[a] = h.mem[H8_SENSORS + a] = (uint8_t)rnd(256);
+        for (i = 0; i < RCX_SENSORS; i++) {
+            struct rcx_sensor *s = &host.sensor[i];
+            uint16_t at = (uint16_t)(H8_SENSORS + i * SF_SIZE);
+            s->quiet = h8_read16(&h, (uint16_t)(at + SF_QUIET));
+            s->lo = (s16)h8_read16(&h, (uint16_t)(at + SF_LO));
+            s->hi = (s16)h8_read16(&h, (uint16_t)(at + SF_HI));
+        }
+        host.sensors_rest = h.mem[rest_at] = (u8)(1 + rnd(255));
+        h.mem[H8_EVENTS] = 0x5A;
+        events_look_again(&host);
+        if (h8_call(&h, (uint16_t)f, H8_B, 0, 0, NULL, 0, 100000) < 0)
+            fail_msg("simulator: %s", h.error);
+        assert_int_equal(h.mem[rest_at], host.sensors_rest);
+        for (i = 0; i < RCX_SENSORS; i++) {
+            const struct rcx_sensor *s = &host.sensor[i];
+            uint16_t at = (uint16_t)(H8_SENSORS + i * SF_SIZE);
+            assert_int_equal(h8_read16(&h, (uint16_t)(at + SF_QUIET)), s->quiet);
+            assert_int_equal(h8_read16(&h, (uint16_t)(at + SF_LO)), (u16)s->lo);
+            assert_int_equal(h8_read16(&h, (uint16_t)(at + SF_HI)), (u16)s->hi);
+            for (a = 0; a < SF_SIZE; a++)
+                if (a != SF_QUIET && a != SF_QUIET + 1 && a != SF_LO && a != SF_LO + 1 && a != SF_HI && a != SF_HI + 1)
+                    assert_int_equal(h.mem[at + a], before[i * SF_SIZE + a]);
+        }
+        assert_int_equal(h.mem[H8_EVENTS], 0x5A); /* nothing past sensor[] */
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(random_events),
+        cmocka_unit_test(looks_again),
     };
     if (argc != 3) {
         fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
