@@ -18,8 +18,8 @@ _events_window:
 	mov.w	r4,@-r7
 	mov.w	r5,@-r7
 	mov.w	r6,@-r7
-	mov.w	#SF_EVENT,r3
-	add.w	r3,r0			; b->event
+	add.b	#SF_EVENT & 0xFF,r0l
+	addx	#SF_EVENT >> 8,r0h	; b->event
 	mov.w	#0x8000,r5		; lo = -32768
 	mov.w	#0x7FFF,r6		; hi = 32767
 	mov.b	#16,r2h			; RCX_EVENTS
