@@ -135,7 +135,7 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
 /* Every input is marked moving: the one that matters is among them, and that costs less than finding it (a sample
  * worked out in full again gives what it gave). */
 RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
-#ifndef __H8300__ /* on the brick: drivers/h8300/sensorscan.S (offsets checked with events_window()'s below) */
+#ifndef __H8300__ /* on the brick: drivers/h8300/eventwindow.S (offsets checked with events_window()'s below) */
 void events_look_again(struct rcx *b)
 {
     struct rcx_sensor *s = b->sensor;
@@ -413,7 +413,7 @@ RCX_STATIC_ASSERT(ew_states, RCX_EVENT_LOW == 8 && RCX_EVENT_STATE_LOW == 0 && R
                              && RCX_EVENT_STATE_HIGH == 2 && EVENTS_WINDOW_NONE == SF_WINDOW_NONE);
 RCX_STATIC_ASSERT(ew_look_again, offsetof(struct rcx, sensors_rest) == SF_REST && SENSOR_MOVING == 0
                                  && sizeof(struct rcx_sensor) == SF_SIZE && offsetof(struct rcx_sensor, lo) == SF_LO
-                                 && offsetof(struct rcx_sensor, hi) == SF_HI); /* sensorscan.S */
+                                 && offsetof(struct rcx_sensor, hi) == SF_HI); /* events_look_again */
 #else
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
 {

@@ -26,7 +26,7 @@
 #endif
 #define SF_LATE (SF_SENSOR + 21) /* sensor[0].late (u8) */
 #define SF_WINDOW_NONE 0x7FFF /* EVENTS_WINDOW_NONE (vm/events.h) */
-#define SF_REST (SF_SENSOR + 555) /* struct rcx: sensors_rest (u8; sensorscan.S) */
+#define SF_REST (SF_SENSOR + 555) /* struct rcx: sensors_rest (u8; sensor_scan in sensorfeed.S, eventwindow.S) */
 #define SF_EVENT (SF_SENSOR + 66) /* struct rcx: event[], right after sensor[] (eventwindow.S) */
 #define EV_SIZE 22         /* struct rcx_event: its size; 16 of them (RCX_EVENTS) */
 #define EV_SOURCE 0        /* source (u8) */

@@ -5,7 +5,7 @@
  * history, the rotation phase, events watching the input or not, late samples) fed runs of random samples, the
  * whole struct rcx_sensor compared after each, and the calls to the event engine (events_evaluate(),
  * events_window(): stubs on both sides, which record their arguments and the input as it was when called).
- * Then sensor_scan() (drivers/h8300/sensorscan.S) the same way: three samples, and b->sensors_rest.
+ * Then sensor_scan() (in sensorfeed.S too) the same way: three samples, and b->sensors_rest.
  * Also prints the states a moving light sample in percent mode and a rotation sample in angle mode take.
  */
 #include <stdarg.h>

@@ -3,7 +3,7 @@
  * The brick's events_window() (drivers/h8300/eventwindow.S, run in the H8/300 simulator) against its reference, the C
  * of vm/events.c compiled here for the host: random events (sources 0-10 and cleared, types 0-16, states 0-5, the
  * thresholds at and next to the ends of the 16-bit range or anywhere) and keys, lo and hi of the input compared.
- * Then events_look_again() (drivers/h8300/sensorscan.S) from random inputs: the inputs and b->sensors_rest compared.
+ * Then events_look_again() (eventwindow.S too) from random inputs: the inputs and b->sensors_rest compared.
  */
 #include <stdarg.h>
 #include <stddef.h>
