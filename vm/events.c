@@ -135,6 +135,7 @@ static void watch(struct rcx *b, struct rcx_event *e, u8 d)
 /* Every input is marked moving: the one that matters is among them, and that costs less than finding it (a sample
  * worked out in full again gives what it gave). */
 RCX_STATIC_ASSERT(three_inputs, RCX_SENSORS == 3);
+#ifndef __H8300__ /* on the brick: drivers/h8300/eventwindow.S (offsets checked with events_window()'s below) */
 void events_look_again(struct rcx *b)
 {
     struct rcx_sensor *s = b->sensor;
@@ -146,6 +147,7 @@ void events_look_again(struct rcx *b)
     } while (++s < b->sensor + RCX_SENSORS);
     b->sensors_rest = 0;
 }
+#endif
 
 /* Spec p. 25: tasks monitoring events are not told. */
 void events_clear_all(struct rcx *b)
@@ -396,6 +398,23 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
  * (events_look_again()). A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a
  * look at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
  * than here, in the registers it took. */
+#ifdef __H8300__
+/* On the brick events_window() is drivers/h8300/eventwindow.S (some 40 bytes fewer than gcc 3.4's code for the C
+ * below); the C here is its reference (tests/drivers/test_h8window.c compares the two). */
+#include "sensorfeed.h"
+#include <stddef.h>
+RCX_STATIC_ASSERT(ew_layout, offsetof(struct rcx, event) == SF_EVENT && sizeof(struct rcx_event) == EV_SIZE
+                             && RCX_EVENTS == 16 && offsetof(struct rcx_event, source) == EV_SOURCE
+                             && offsetof(struct rcx_event, type) == EV_TYPE
+                             && offsetof(struct rcx_event, state) == EV_STATE
+                             && offsetof(struct rcx_event, upper) == EV_UPPER
+                             && offsetof(struct rcx_event, lower) == EV_LOWER);
+RCX_STATIC_ASSERT(ew_states, RCX_EVENT_LOW == 8 && RCX_EVENT_STATE_LOW == 0 && RCX_EVENT_STATE_NORMAL == 1
+                             && RCX_EVENT_STATE_HIGH == 2 && EVENTS_WINDOW_NONE == SF_WINDOW_NONE);
+RCX_STATIC_ASSERT(ew_look_again, offsetof(struct rcx, sensors_rest) == SF_REST && SENSOR_MOVING == 0
+                                 && sizeof(struct rcx_sensor) == SF_SIZE && offsetof(struct rcx_sensor, lo) == SF_LO
+                                 && offsetof(struct rcx_sensor, hi) == SF_HI); /* events_look_again */
+#else
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
 {
     struct rcx_event *e = b->event;
@@ -430,6 +449,7 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
     in->lo = lo;
     in->hi = hi;
 }
+#endif /* __H8300__ */
 
 /* Spec p. 63: behave as if these events had happened. Every task monitoring one of them takes its EV exit; the
  * events that reached it are kept for source 23. */

@@ -162,6 +162,8 @@ RCX_STATIC_ASSERT(sf_bytes, offsetof(struct rcx_sensor, mode) == SF_MODE
                             && offsetof(struct rcx_sensor, watched) == SF_WATCHED
                             && offsetof(struct rcx_sensor, number) == SF_NUMBER);
 RCX_STATIC_ASSERT(sf_none, SF_WINDOW_NONE == EVENTS_WINDOW_NONE);
+RCX_STATIC_ASSERT(sf_scan, sizeof(struct rcx_sensor) == SF_SIZE && offsetof(struct rcx, sensors_rest) == SF_REST
+                           && RCX_SENSORS == 3 && SENSOR_MOVING == 0); /* and sensor_scan */
 RCX_STATIC_ASSERT(sf_late, offsetof(struct rcx, sensor[0].late) == SF_LATE && EVENTS_KEY(1) == 2
                            && SENSOR_DT_MS == 3);
 RCX_STATIC_ASSERT(sf_modes, SENSOR_MODE_PERCENT == 0x80 && SENSOR_MODE_ANGLE == 0xE0 && SENSOR_MODE_BOOL == 0x20
@@ -290,6 +292,8 @@ void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 
 #endif /* __H8300__ */
 
+/* On the brick sensor_scan() with sensors_at_rest() in it is in drivers/h8300/sensorfeed.S: the C is its reference. */
+#ifndef __H8300__
 /* A sample equal to the SENSOR_DT_MS ones before it changes nothing: the change rate is 0, and the rotation phase,
  * the boolean and the value are the ones the last of them gave (the boolean of a steady signal is a function of
  * the level and of the boolean before, and that function keeps its own result): sensor_feed() returns at once. One
@@ -315,3 +319,4 @@ u8 sensors_at_rest(struct rcx *b)
     b->sensors_rest = rest;
     return rest;
 }
+#endif /* __H8300__ */

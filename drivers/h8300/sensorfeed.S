@@ -4,7 +4,8 @@
 ; percent mode and a turning rotation sensor in angle mode are the samples the brick works out every millisecond
 ; (issue 21); their paths here read each field once, with the percentage a division by 156 (divxu) instead of the C's
 ; multiplies, and the boolean and the mode with a few compares. The temperature modes call the C
-; sensor_temperature(). tests/drivers/test_h8feed.c runs this against the C on random inputs.
+; sensor_temperature(). tests/drivers/test_h8feed.c runs this against the C on random inputs. Before it, sensor_scan():
+; each input fed by falling into it.
 ;
 ; void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 ;
@@ -17,7 +18,43 @@
 #include "sensorfeed.h"
 
 	.section .text
+	.global	_sensor_scan
 	.global	_sensor_feed
+
+; void sensor_scan(struct rcx *b, const u16 *raw): the three inputs fed (vm/sensors.c), then sensors_at_rest() in it.
+; Registers: r4 = the input; r5 = b; r6 = raw (r4-r6 saved: gcc keeps them, and sensor_feed() too).
+; sensors_at_rest() is only called from here on the brick: rest = every input steady. An input's quiet is
+; SENSOR_MOVING (0) or SENSOR_STEADY | raw, so steady is bit 15: the high bytes' AND, bit 7.
+_sensor_scan:
+	mov.w	r4,@-r7
+	mov.w	r5,@-r7
+	mov.w	r6,@-r7
+	mov.w	r0,r5
+	mov.w	r1,r6
+	mov.w	#SF_SENSOR,r4
+	add.w	r0,r4			; b->sensor
+	bsr	feed
+	bsr	feed
+	bsr	feed
+	mov.b	@(SF_SENSOR+SF_QUIET,r5),r0l ; high bytes: SENSOR_STEADY in bit 7
+	mov.b	@(SF_SENSOR+SF_SIZE+SF_QUIET,r5),r1l
+	and.b	r1l,r0l
+	mov.b	@(SF_SENSOR+2*SF_SIZE+SF_QUIET,r5),r1l
+	and.b	r1l,r0l
+	rotl	r0l
+	and.b	#1,r0l
+	mov.b	r0l,@(SF_REST,r5)	; sensors_rest: 1 when all three are steady
+	mov.w	@r7+,r6
+	mov.w	@r7+,r5
+	mov.w	@r7+,r4
+	rts
+
+feed:	mov.w	r5,r0			; sensor_feed(b, input, *raw++), then the next input
+	mov.w	r4,r1
+	mov.w	@r6+,r2
+	add.b	#SF_SIZE,r4l
+	addx	#0,r4h
+					; on into sensor_feed: its rts returns to the bsr
 
 _sensor_feed:
 	bset	#7,r2h			; raw | SENSOR_STEADY
@@ -183,9 +220,9 @@ eval:	mov.w	r1,r4
 	.word	0x5E00,_events_evaluate	; jsr
 	mov.w	@r7+,r2
 	mov.w	@(SF_LO,r4),r0		; lo EVENTS_WINDOW_NONE: an event looks at every sample (types 0-7), it still
-	mov.w	#SF_WINDOW_NONE,r3	; does: no window to work out
-	cmp.w	r3,r0
-	beq	out
+	add.b	#1,r0l			; does: no window to work out (V: lo + 1 overflowed, lo was 32767)
+	addx	#0,r0h
+	bvs	out
 	mov.w	r4,r1
 	mov.w	@(2,r7),r0
 	.word	0x5E00,_events_window	; jsr

@@ -7,6 +7,7 @@
 #ifndef RCX_SENSORFEED_H
 #define RCX_SENSORFEED_H
 
+#define SF_SIZE 22         /* struct rcx_sensor: its size; 3 of them (RCX_SENSORS) */
 #define SF_QUIET 0         /* struct rcx_sensor: quiet (u16) */
 #define SF_VALUE 2         /* value (s16) */
 #define SF_RAW 4           /* raw (u16) */
@@ -25,5 +26,13 @@
 #endif
 #define SF_LATE (SF_SENSOR + 21) /* sensor[0].late (u8) */
 #define SF_WINDOW_NONE 0x7FFF /* EVENTS_WINDOW_NONE (vm/events.h) */
+#define SF_REST (SF_SENSOR + 555) /* struct rcx: sensors_rest (u8; sensor_scan in sensorfeed.S, eventwindow.S) */
+#define SF_EVENT (SF_SENSOR + 66) /* struct rcx: event[], right after sensor[] (eventwindow.S) */
+#define EV_SIZE 22         /* struct rcx_event: its size; 16 of them (RCX_EVENTS) */
+#define EV_SOURCE 0        /* source (u8) */
+#define EV_TYPE 1          /* type (u8); types 0-7 (below RCX_EVENT_LOW, 8) look at every sample */
+#define EV_STATE 2         /* state (u8): 0 low, 1 normal, 2 high, above: every sample */
+#define EV_UPPER 4         /* upper (s16) */
+#define EV_LOWER 6         /* lower (s16) */
 
 #endif

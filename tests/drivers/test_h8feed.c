@@ -5,6 +5,7 @@
  * history, the rotation phase, events watching the input or not, late samples) fed runs of random samples, the
  * whole struct rcx_sensor compared after each, and the calls to the event engine (events_evaluate(),
  * events_window(): stubs on both sides, which record their arguments and the input as it was when called).
+ * Then sensor_scan() (in sensorfeed.S too) the same way: three samples, and b->sensors_rest.
  * Also prints the states a moving light sample in percent mode and a rotation sample in angle mode take.
  */
 #include <stdarg.h>
@@ -32,7 +33,7 @@ struct call {
     unsigned a, key;
     struct rcx_sensor in;
 };
-#define MAX_CALLS 4
+#define MAX_CALLS 6 /* two a sample, three samples a scan */
 struct calls {
     int n;
     struct call c[MAX_CALLS];
@@ -74,7 +75,7 @@ void hal_sensor_power(struct rcx *b, u8 input, u8 on) { (void)b, (void)input, (v
 /* --- The simulator: the image, with the event engine's entry points turned into returns; the calls are seen by the
  * trace hook, once the jsr has reached them. The inputs are in the scratch RAM, b where its sensor[] lands there. */
 static struct h8 h;
-static uint16_t feed_at, evaluate_at, window_at;
+static uint16_t feed_at, scan_at, evaluate_at, window_at;
 #define H8_SENSORS H8_SCRATCH
 #define H8_B (H8_SENSORS - SF_SENSOR)
 #define H8_SENSOR_SIZE 22
@@ -136,6 +137,7 @@ static void load_image(void)
 
     assert_int_equal(h8_image_load(&h, image_path, nm_path), 0);
     f = h8_sym("_sensor_feed");
+    scan_at = (uint16_t)h8_sym("_sensor_scan");
     e = h8_sym("_events_evaluate");
     w = h8_sym("_events_window");
     assert_true(f > 0 && e > 0 && w > 0);
@@ -258,6 +260,40 @@ static void random_inputs(void **state)
     print_message("%u samples, %u with calls of the event engine (%u calls)\n", step, events, calls);
 }
 
+/* sensor_scan(): the three inputs fed (the raw samples in the scratch RAM after them), then sensors_at_rest() in
+ * b->sensors_rest (which lands beyond the scratch RAM, on the image's RAM vectors: no interrupt is taken here). */
+static void random_scans(void **state)
+{
+    const uint16_t raw_at = H8_SENSORS + RCX_SENSORS * H8_SENSOR_SIZE, rest_at = H8_B + SF_REST;
+    unsigned round, i, rest = 0;
+    u16 raw[RCX_SENSORS];
+
+    (void)state;
+    load_image();
+    for (round = 0; round < 30000; round++) {
+        for (i = 0; i < RCX_SENSORS; i++) {
+            struct rcx_sensor *s = &host.sensor[i];
+            random_sensor(s, i);
+            if (rnd(2)) /* steady, and a sample that keeps it so: the inputs all at rest often */
+                s->quiet = (u16)(SENSOR_STEADY | s->raw), s->past[0] = s->past[1] = s->raw;
+            h8_put((uint16_t)(H8_SENSORS + i * H8_SENSOR_SIZE), s);
+            raw[i] = rnd(3) ? s->raw : sample(s);
+            h8_write16(&h, (uint16_t)(raw_at + 2 * i), raw[i]);
+        }
+        host.sensors_rest = (u8)(2 + rnd(2));
+        h.mem[rest_at] = host.sensors_rest;
+        host_calls.n = h8_calls.n = 0;
+        sensor_scan(&host, raw);
+        if (h8_call(&h, scan_at, H8_B, raw_at, 0, NULL, 0, 100000) < 0)
+            fail_msg("simulator: %s", h.error);
+        expect_same(round);
+        assert_int_equal(h.mem[rest_at], host.sensors_rest);
+        rest += host.sensors_rest;
+    }
+    assert_true(rest > round / 20 && rest < round - round / 20);
+    print_message("%u scans, %u with the inputs at rest\n", round, rest);
+}
+
 /* Every raw value in every mode from a moving state, without slope and with each slope. */
 static void every_raw_every_mode(void **state)
 {
@@ -307,6 +343,7 @@ int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(random_inputs),
+        cmocka_unit_test(random_scans),
         cmocka_unit_test(every_raw_every_mode),
         cmocka_unit_test(states_of_moving_samples),
     };
