@@ -27,7 +27,10 @@ def raw_exchange(sim, data, timeout=5):
     s = socket.create_connection((sim.host, sim.port), timeout=timeout)
     try:
         s.sendall(data)
-        s.shutdown(socket.SHUT_WR)
+        try:
+            s.shutdown(socket.SHUT_WR)
+        except OSError:  # the server answered a refused request and closed first: its answer is still to be read
+            pass
         out = b""
         while True:
             try:
