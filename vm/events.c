@@ -393,10 +393,11 @@ void events_evaluate(struct rcx *b, u8 left, u8 only)
  * hysteresis, which only widens the range being left (LOW below lower, NORMAL from lower to upper, HIGH above upper),
  * as bounds not included. While the value stays between them, looking at the events changes nothing (click timing
  * is judged when a state changes, and a boolean's edge fires only an event of types 0-7), so the sensor engine does not
- * look (vm/sensors.c). An event of types 0-7, or one calibrating or not yet classified, leaves no value: it looks at
- * every sample, and lo is then EVENTS_WINDOW_NONE: the sensor engine does not ask again until the events change
- * (events_look_again()). A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more than a
- * look at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
+ * look (vm/sensors.c). An event of types 0-7 leaves no value: it looks at every sample, and lo is then
+ * EVENTS_WINDOW_NONE: the sensor engine does not ask again until the events change (events_look_again()). One
+ * calibrating or not yet classified leaves none for now, but lo is not EVENTS_WINDOW_NONE: the window is worked out
+ * again once it has its state. A lower threshold of -32768 leaves none either (lower - 1 wraps), which costs no more
+ * than a look at every sample. A pass of its own rather than in events_evaluate(): there it cost more bytes
  * than here, in the registers it took. */
 #ifdef __H8300__
 /* On the brick events_window() is drivers/h8300/eventwindow.S (some 40 bytes fewer than gcc 3.4's code for the C
@@ -423,9 +424,13 @@ void events_window(struct rcx *b, struct rcx_sensor *in, u8 key)
     do {
         if (e->source != key)
             continue;
-        if (e->type < RCX_EVENT_LOW || e->state > RCX_EVENT_STATE_HIGH) {
-            lo = EVENTS_WINDOW_NONE; /* none: the rest need not be looked at */
+        if (e->type < RCX_EVENT_LOW) {
+            lo = EVENTS_WINDOW_NONE; /* none, as long as the events stay as they are: the rest need not be looked at */
             hi = -32768;
+            break;
+        }
+        if (e->state > RCX_EVENT_STATE_HIGH) {
+            hi = -32768; /* none for now (calibrating, not yet classified): worked out again at the next evaluation */
             break;
         }
         l = e->lower;

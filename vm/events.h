@@ -96,7 +96,7 @@ void events_raise(struct rcx *b, u16 mask);                           /* DirectE
 void events_evaluate(struct rcx *b, u8 left, u8 only);
 struct rcx_sensor;
 /* Sets in->lo and in->hi (vm/sensors.h): between them, values of input `in` (KEY `key`) change nothing for its
- * events; lo EVENTS_WINDOW_NONE (and hi -32768) when one of them looks at every sample whatever it gives. */
+ * events; lo EVENTS_WINDOW_NONE (and hi -32768) when one of them looks at every sample whatever its state. */
 void events_window(struct rcx *b, struct rcx_sensor *in, u8 key);
 #define EVENTS_WINDOW_NONE 32767
 static inline void events_counter_changed(struct rcx *b, u8 n)

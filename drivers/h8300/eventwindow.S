@@ -34,7 +34,7 @@ loop:	mov.b	@r0,r3l			; source
 	mov.b	@(EV_STATE,r0),r3l
 	mov.w	@(EV_UPPER,r0),r4	; u (mov keeps C)
 	cmp.b	#2,r3l
-	bhi	none			; undefined, calibrating: every sample
+	bhi	empty			; undefined, calibrating: the next sample, then worked out again
 	beq	high
 	shlr	r3l			; C: normal (1), else low (0)
 	mov.w	@(EV_LOWER,r0),r3	; l
@@ -67,7 +67,7 @@ high:	mov.w	r4,r3			; high: l = upper, u = 32767 (hi as it is)
 low:	mov.w	r3,r4			; low: u = lower, l = -32768 (lo as it is)
 	bra	hionly
 none:	mov.w	#SF_WINDOW_NONE,r5	; lo EVENTS_WINDOW_NONE, hi -32768: the rest need not be looked at
-	mov.w	#0x8000,r6
+empty:	mov.w	#0x8000,r6		; (empty: hi -32768 and lo as it is, not EVENTS_WINDOW_NONE but by a wrap)
 	bra	done
 
 ; void events_look_again(struct rcx *b): every input moving, with no window (lo 0, hi -32768); b->sensors_rest 0.

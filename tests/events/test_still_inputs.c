@@ -246,6 +246,10 @@ static void a_still_input_is_calibrated(void **state)
     feed(b, 600, 1);
     assert_int_equal(poll(b, 25, 0), S_NORMAL);
     still(b, 600);
+    b->event[0].state = S_HIGH;                        /* what an evaluation would put right */
+    for (k = 0; k < 100; k++)
+        feed(b, (u16)(500 + k % 7 * 20), 1);           /* moving inside 413 ... 787: windowed again, not looked at */
+    assert_int_equal(poll(b, 25, 0), S_HIGH);
     brick_free(b);
 }
 
