@@ -224,14 +224,14 @@ void ops_wait(struct rcx *b, struct rcx_task *t, const u8 *ins); /* Wait, Swan's
 s16 ops_source(struct rcx *b, const struct rcx_task *t, const u8 *ins);
 s16 ops_source8(struct rcx *b, const struct rcx_task *t, const u8 *ins); /* the same with an 8-bit index */
 
-/* Input n's processed value or boolean may have changed. Inline: the sensor engine, which has the input at hand,
- * calls events_evaluate() itself (vm/sensors.c), and the image needs no function of its own for this. */
 /* A new 10-bit sample of input n (vm/sensors.h). */
 static inline void sensor_sample(struct rcx *b, u8 n, u16 raw)
 {
     if (n < RCX_SENSORS)
         sensor_feed(b, &b->sensor[n], raw);
 }
+/* Input n's processed value or boolean may have changed. Inline: the sensor engine, which has the input at hand,
+ * calls events_evaluate() itself (vm/sensors.c), and the image needs no function of its own for this. */
 static inline void events_input(struct rcx *b, u8 n)
 {
     if (n < RCX_SENSORS)

@@ -6,9 +6,9 @@
  * Most samples repeat the ones before (an input with nothing connected, a sensor at rest): once the last
  * SENSOR_DT_MS samples are equal, another equal one cannot change anything, and sensor_sample() returns at once
  * (rcx_sensor.quiet). Only the samples worked out in full are told to the events that watch the input, and only when
- * the value is no longer between lo and hi (vm/events.c events_window()): an event whose input did not move, or moved where nothing
- * can happen to it, costs nothing, and a still input is at rest (sensors_at_rest()) like one no event watches. The
- * event engine marks an input moving when its events want the next sample whatever it gives (vm/events.c).
+ * the value is no longer between lo and hi (vm/events.c events_window()): an event whose input did not move, or moved
+ * where nothing can happen to it, costs nothing, and a still input is at rest (sensors_at_rest()) like one no event
+ * watches. The event engine marks an input moving when its events want the next sample whatever it gives.
  */
 #include "rcx.h"
 #include "hal.h"
@@ -233,8 +233,8 @@ static s16 turn(struct rcx_sensor *s, s16 v, u16 raw)
 
 RCX_STATIC_ASSERT(sensor_dt_ms_is_3, SENSOR_DT_MS == 3); /* past[] is moved by hand below and in sensor_set_type() */
 
-/* A sample is worked out only when raw changed or has not been the same for SENSOR_DT_MS samples yet (rcx_sensor.quiet):
- * one that may change something. */
+/* A sample is worked out only when raw changed or has not been the same for SENSOR_DT_MS samples yet
+ * (rcx_sensor.quiet): one that may change something. */
 void sensor_feed(struct rcx *b, struct rcx_sensor *s, u16 raw)
 {
     u8 was, mode;
