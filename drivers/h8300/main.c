@@ -16,12 +16,11 @@
 
 /*
  * The brick never goes deaf (issue 21, docs/timing.md): every pass of the main loop looks at the IR link and the
- * buttons and gives rt_run() its turn, whatever the program costs. A pass feeds the scans waiting until a tick
- * comes, one only if it costs the events on its inputs a millisecond or more, and counts up to TICKS_PER_PASS of the
- * milliseconds owed (rt_tick is cheap and bounded: the clock keeps time). While a scan or a millisecond is still
- * owed the tasks get a slice of one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon
- * back: a program that asks for more than the CPU can do gets fewer event evaluations (scans fed late, feed_scan)
- * and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
+ * buttons and gives rt_run() its turn, whatever the program costs. A pass feeds the scans that were waiting when it
+ * began (all but the last late: cheap, feed_scan), and counts up to TICKS_PER_PASS of the milliseconds owed (rt_tick
+ * is cheap and bounded: the clock keeps time). While a scan or a millisecond is still owed the tasks get a slice of
+ * one chunk (RUN_SLICE), not the run until the next tick, so that the loop is soon back: a program that asks for more
+ * than the CPU can do gets fewer event evaluations (one a pass) and runs slower. TICKS_BACKLOG only guards against a step the loop never returns from.
  */
 #define TICKS_PER_PASS 4
 #define RUN_SLICE RCX_RUN_CHUNK
