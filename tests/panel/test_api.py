@@ -77,7 +77,9 @@ def _is_chunk_size(part):
 
 
 def test_state_and_inputs(sim):
-    wait_for("the sweep of --load to end", lambda: brick0(sim)["sound"] == 0)
+    # The power-on beep-beep (160 ms on, 60 off, twice) has a silence in it: wait past its 440 ms, then for quiet.
+    wait_for("the power-on sound to end",
+             lambda: (lambda st: st["t"] >= 600 and st["bricks"][0]["sound"] == 0)(sim.state()))
     check(sim.state()["world"] is False, "no world without --world")
     b = brick0(sim)
     for key in ("motors", "lcd", "num", "prog", "sound", "sensors", "buttons", "battery", "slot", "tasks", "ir"):
