@@ -9,6 +9,7 @@ const u8 rcx_opflags[128] = {
 #undef RCX_OP
 };
 
+#ifndef __H8300__ /* the brick's one walk of program code inlines it (drivers/h8300/swanblock.S) */
 u8 rcx_op_params(u8 op)
 {
     u8 f = rcx_opflags[rcx_op_index(op)], n = (u8)(op & 7);
@@ -19,3 +20,4 @@ u8 rcx_op_params(u8 op)
         n -= 6;                        /* unknown opcodes: their nominal length (rcx_op_nominal_params(), spec p. 5) */
     return n;
 }
+#endif

@@ -32,30 +32,37 @@ u8 mem_obj_runnable(const struct rcx *b, u8 obj)
 /*
  * What follows the objects moves by the difference: at once, or, with RCX_MOVE_STEP (the brick), a pass of the main
  * loop at a time (mem_step), so that a command on a full memory never holds the IR link and the buttons for long
- * (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's, and a
- * move left by an earlier resize is completed first (a command makes one resize but for rare cases: mem_delete, and
- * a download abandoned by the next BeginOfTask/Sub).
+ * (issue 21, docs/timing.md). The offsets are the new ones at once; the bytes still to move are rcx.move's. A command
+ * makes one resize but for two cases (mem_delete meeting the download in progress, a download abandoned by the next
+ * BeginOfTask/Sub), whose second resize's move, worked out on the offsets the first left, is made after the first's
+ * (no command runs while a move is left: rt_run).
  */
 u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
 {
-    u16 *start = &b->obj_start[obj], *last = start + n;
-    u16 first = *start, tail = *last, end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
-    u16 old = (u16)(tail - first), delta = (u16)(size - old); /* growth, or shrinkage as a 16-bit negative */
-    u8 *at = b->arena + tail;
+    u16 *start, *last, first, tail, end, old, delta;
+    u8 *at;
 #if RCX_MOVE_STEP
-    struct rcx_move *m = &b->move;
-#endif
+    struct rcx_move *m = b->move;
 
+    while (m[1].len)               /* (never so: two moves are all a command leaves) */
+        mem_step(b);
+#endif
+    start = &b->obj_start[obj];
+    last = start + n;
+    first = *start;
+    tail = *last;
+    end = (u16)(CODE_END(b) + LOG_BYTES(b)); /* of the datalog */
+    old = (u16)(tail - first);
+    delta = (u16)(size - old);     /* growth, or shrinkage as a 16-bit negative */
     if (size > (u16)(RCX_ARENA_SIZE - end + old))
         return 0;                  /* growth needs the room */
+    if (!delta)                    /* the same size (the last block of a download as announced, a range already */
+        return 1;                  /* empty): nothing to move, nor any offset to change */
     end = (u16)(end - tail);       /* bytes after the objects, up to the datalog's end */
-    while (++start < last)
-        *start = first;
-    for (; start <= &b->obj_start[RCX_OBJS]; start++)
-        *start = (u16)(*start + delta);
+    at = b->arena + tail;
 #if RCX_MOVE_STEP
-    while (mem_step(b))
-        ;
+    if (m->len)
+        m++;                       /* after the first */
     m->from = at;
     m->to = at + delta;
     m->len = end;
@@ -65,6 +72,10 @@ u8 mem_resize(struct rcx *b, u8 obj, u8 n, u16 size)
      * blocks of a download overwrite them. */
     memmove(at + (s16)delta, at, end);
 #endif
+    while (++start < last)
+        *start = first;
+    for (; start <= &b->obj_start[RCX_OBJS]; start++)
+        *start = (u16)(*start + delta);
     return 1;
 }
 
@@ -83,13 +94,20 @@ void mem_delete(struct rcx *b, u8 id, u8 count)
 }
 
 #if RCX_MOVE_STEP
-/* RCX_MOVE_STEP bytes of the move (downwards from its start, upwards from its end, so that nothing is overwritten
- * before it is moved); 0 when there was none. The bytes an object gains keep what was there until its blocks come. */
+/* RCX_MOVE_STEP bytes of the move left (downwards from its start, upwards from its end, so that nothing is overwritten
+ * before it is moved): the first, then the second (mem_resize sets it only while the first is left); 0 when there was
+ * none. The bytes an object gains keep what was there until its blocks come. */
 u8 mem_step(struct rcx *b)
 {
-    struct rcx_move *m = &b->move;
-    u16 n = m->len, left;
-    u8 *to = m->to, *from = m->from;
+    struct rcx_move *m = b->move;
+    u16 n, left;
+    u8 *to, *from;
+
+    if (!m->len)
+        m++;                       /* the first made (or none), the second's turn */
+    n = m->len;
+    to = m->to;
+    from = m->from;
 
     if (!n)
         return 0;

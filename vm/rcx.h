@@ -125,9 +125,11 @@ struct rcx {
     u8 boot_mode;          /* GoIntoBootMode accepted */
     u8 sensors_rest;       /* sensors_at_rest() found every input steady; cleared when that may end */
 
-    struct rcx_move move;  /* nothing that reads or writes program memory runs while len is not 0 */
+    struct rcx_move move[2]; /* the move being made, then the one to make after it (a command's second resize):
+                                nothing that reads or writes program memory runs while a len is not 0 */
 #if RCX_SWAN
-    u16 dl_scan;    /* the download's first instruction not looked at for Swan code yet (swan_block) */
+    u16 dl_scan;    /* the download's first instruction not looked at for Swan code yet (swan_block; while no Swan
+                       code is found) */
     u8 dl_swan;     /* the download has Swan code */
     u8 spare2;
 #endif

@@ -108,43 +108,4 @@ void swan_exec(struct rcx *b, struct rcx_task *t, const u8 *ins, const struct rc
         ops_wait(b, t, ins);           /* SW_WAIT_MS */
 }
 
-/*
- * A Swan program is one whose code has a Swan opcode, or a test (SCheckDo/LCheckDo) of source 43 or 44: NQC's Swan
- * code reaches every variable it compiles through those (swan-target.md 4). Each block's instructions are looked at
- * as it comes (the last block's all, a truncated one too), walked from the object's start instruction by instruction:
- * the end of a download then has no walk of its slot to make, which on a full slot held the main loop 75 ms (issue
- * 21 item 3, docs/timing.md). The block of `count` bytes at `src` is written first.
- */
-RCX_STATIC_ASSERT(checks, (RCX_OP_SCHECK_DO & 0xE7) == 0x85 && (RCX_OP_LCHECK_DO & 0xE7) == 0x85);
-#define SWAN_SOURCE(s) ((u8)(((s) & 0x3F) - RCX_SRC_GLOBAL) <= 1) /* 43 or 44 */
-void swan_block(struct rcx *b, const u8 *src, u16 count)
-{
-    u8 *code = b->arena + b->obj_start[b->dl.obj], *end = code + b->dl.filled, *whole = end, op;
-    const u8 *p = code + b->dl_scan;
-    const u16 *at;
-
-    memcpy(end - count, src, count);
-    if (count == b->dl.filled) {       /* the first block */
-        p = code;
-        b->dl_swan = 0;
-    }
-    if (b->dl.last)                    /* more blocks to come: an instruction (8 bytes at most) that starts in the */
-        whole -= 7;                    /* last 7 may have the rest of its bytes in the next */
-    for (; p < whole; p += 1 + rcx_op_params(op)) {
-        op = *p;                       /* toggle bit folded */
-        if (rcx_swan_find(op) || ((u8)(op & 0xE7) == 0x85 && p + 2 < end && (SWAN_SOURCE(p[1]) || SWAN_SOURCE(p[2]))))
-            b->dl_swan = 1;
-    }
-    b->dl_scan = (u16)(p - code);
-    if (b->dl.last)
-        return;
-    /* The last block: the code may run from now on, its final size, then its slot's kind. The slot's other objects
-     * are not walked again: a slot that was a Swan program stays one as long as it has other code (a program's
-     * objects are downloaded into an emptied slot, nqc -d, host-tools.md, and each one's kind is known as it comes). */
-    b->dl.active = 0;
-    mem_resize(b, b->dl.obj, 1, b->dl.filled);
-    op = (u8)(b->dl.obj / RCX_SLOT_OBJS); /* the slot */
-    at = &b->obj_start[(u8)(op * RCX_SLOT_OBJS)]; /* its first object */
-    b->swan[op] = b->dl_swan || (b->swan[op] && (u16)(at[RCX_SLOT_OBJS] - at[0]) != b->dl.filled);
-}
 #endif

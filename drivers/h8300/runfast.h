@@ -14,12 +14,12 @@
 #if RCX_SWAN               /* an image with Swan's programs (the CMake option RCX_IMAGE_SWAN, CMakeLists.txt) */
 #define RF_GLOBAL 0xD0     /* global[] */
 #define RF_TASK 0x2D0      /* task[] */
-#define RF_ARENA 0x6CE     /* arena[]; obj_start[] is at 0 */
+#define RF_ARENA 0x6D4     /* arena[]; obj_start[] is at 0 */
 #define RF_TASK_SIZE 0x20  /* sizeof(struct rcx_task) */
 #else
 #define RF_GLOBAL 0xCC     /* global[] */
 #define RF_TASK 0x24C      /* task[] */
-#define RF_ARENA 0x5CE     /* arena[]; obj_start[] is at 0 */
+#define RF_ARENA 0x5D4     /* arena[]; obj_start[] is at 0 */
 #define RF_TASK_SIZE 0x1E  /* sizeof(struct rcx_task) */
 #endif
 #define RF_SUB 1           /* struct rcx_task: sub (u8) */

@@ -564,7 +564,7 @@ void h8m_receive(struct h8machine *m, const uint8_t *bytes, unsigned n, unsigned
 
 unsigned long long h8m_command(struct h8machine *m, const uint8_t *cmd, unsigned n)
 {
-    uint8_t p[3 + 2 * 64 + 2], op = cmd[0];
+    uint8_t p[3 + 2 * H8M_COMMAND_MAX + 2], op = cmd[0];
     unsigned i, k = 0, sum = 0;
 
     if (n && (op & 0xF7) == (m->last_op & 0xF7))
@@ -573,7 +573,7 @@ unsigned long long h8m_command(struct h8machine *m, const uint8_t *cmd, unsigned
     p[k++] = 0x55;
     p[k++] = 0xFF;
     p[k++] = 0x00;
-    for (i = 0; i < n && i < 64; i++) {
+    for (i = 0; i < n && i < H8M_COMMAND_MAX; i++) {
         uint8_t b = i ? cmd[i] : op;
         p[k++] = b;
         p[k++] = (uint8_t)~b;

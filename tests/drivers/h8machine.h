@@ -18,6 +18,7 @@
 #define H8M_MS (H8M_CLOCK / 1000)
 #define H8M_BYTE (H8M_CLOCK * 11 / 2400) /* start, 8 data, parity, stop */
 #define H8M_RX 512
+#define H8M_COMMAND_MAX 206 /* bytes of a command h8m_command() sends: a download block of 200 (src/ir.h, IR_RX_MAX) */
 #define H8M_TX 4096
 #define H8M_CHANGES 64
 #define H8M_LCD 16

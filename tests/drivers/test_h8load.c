@@ -338,16 +338,21 @@ static void sixteen_events_on_changing_inputs_all_fire_and_the_tick_keeps_its_bo
  * BeginOfTask of a 1 000-byte task in slot 0 (the arena moved up), its blocks, DeleteAllTasks in a full slot, and
  * nqc -clear (host-tools.md: StopAllTasks, then DeleteAllSubs and DeleteAllTasks in each slot, SetDatalog 0). Each
  * moves up to the whole arena (some 11 000 bytes): the brick does that a step a pass (vm/progmem.c, mem_step), and a
- * DeleteAll in one move; the end of a download no longer walks its slot for Swan code (vm/swan.c). The figures are
- * in docs/timing.md.
+ * DeleteAll in one move; the end of a download no longer walks its slot for Swan code (vm/swanblock.c). Then the
+ * longest blocks a host may send, and the two commands that resize twice (a second move waits for the first). The
+ * figures are in docs/timing.md.
  */
 #define BIG_TASK 240       /* bytes, the largest h8m_download_task-free download in BLOCK-byte blocks below */
 #define BLOCK 48
 
-/* Task n of `len` bytes (SetVar var 1 = 1, over and over: valid code), in blocks of BLOCK bytes as nqc sends. */
-static void download(uint8_t n, unsigned len)
+static const uint8_t setvar[5] = { 0x14, 1, 2, 1, 0 }; /* SetVar var 1 = 1 */
+
+/* BeginOfTask n of `len` bytes, then its blocks of `block` bytes (at most 200, IR_BLOCK_MAX) of `code` over and over,
+ * numbered 1, 2, ..., the last 0: all of them, or only the first `blocks` (the download then stays active). */
+static void download_some(uint8_t n, unsigned len, unsigned block, const uint8_t *code, unsigned codelen,
+                          unsigned blocks)
 {
-    uint8_t begin[6] = { 0x25, 0, 0, 0, 0, 0 }, block[6 + BLOCK], reply[2];
+    uint8_t begin[6] = { 0x25, 0, 0, 0, 0, 0 }, packet[6 + 200], reply[2];
     unsigned at, k, sum, b = 1;
 
     begin[2] = n;
@@ -355,27 +360,30 @@ static void download(uint8_t n, unsigned len)
     begin[5] = (uint8_t)(len >> 8);
     assert_int_equal(h8m_transact(&m, begin, sizeof begin, reply, 2, NULL), 0);
     assert_int_equal(reply[1], 0);
-    for (at = 0; at < len; at += BLOCK) {
-        unsigned size = len - at < BLOCK ? len - at : BLOCK;
-        block[0] = 0x45;
-        block[1] = (uint8_t)(at + size < len ? b++ : 0); /* 1, 2, ..., then 0 for the last */
-        block[2] = 0;
-        block[3] = (uint8_t)size;
-        block[4] = 0;
-        for (k = sum = 0; k < size; k++) {
-            static const uint8_t setvar[5] = { 0x14, 1, 2, 1, 0 };
-            sum += block[5 + k] = setvar[(at + k) % 5];
-        }
-        block[5 + size] = (uint8_t)sum;
-        assert_int_equal(h8m_transact(&m, block, 6 + size, reply, 2, NULL), 0);
+    for (at = 0; at < len && blocks--; at += block) {
+        unsigned size = len - at < block ? len - at : block;
+        packet[0] = 0x45;
+        packet[1] = (uint8_t)(at + size < len ? b++ : 0); /* 1, 2, ..., then 0 for the last */
+        packet[2] = 0;
+        packet[3] = (uint8_t)size;
+        packet[4] = 0;
+        for (k = sum = 0; k < size; k++)
+            sum += packet[5 + k] = code[(at + k) % codelen];
+        packet[5 + size] = (uint8_t)sum;
+        assert_int_equal(h8m_transact(&m, packet, 6 + size, reply, 2, NULL), 0);
         assert_int_equal(reply[1], 0);
     }
+}
+
+/* Task n of `len` bytes (SetVar var 1 = 1, over and over: valid code), in blocks of BLOCK bytes as nqc sends. */
+static void download(uint8_t n, unsigned len)
+{
+    download_some(n, len, BLOCK, setvar, sizeof setvar, ~0u);
 }
 
 /* The code at memory-map word w (40 + 10 p + t: slot p's task t) is download()'s, `len` bytes: moved whole. */
 static void code_intact(unsigned w, unsigned len)
 {
-    static const uint8_t setvar[5] = { 0x14, 1, 2, 1, 0 };
     static uint8_t toggle;             /* a command equal to the last is a repeat, not executed: toggled as nqc does */
     uint8_t map[189], memmap[1] = { 0x20 }, up[4] = { 0x63 }, got[1 + 100];
     unsigned addr, k, at;
@@ -401,6 +409,9 @@ static void code_intact(unsigned w, unsigned len)
 static void host_commands_on_a_full_memory_leave_the_clock_its_time(void **state)
 {
     static const uint8_t stop[] = { 0x50 }, del_tasks[] = { 0x40 }, del_subs[] = { 0x70 }, log0[] = { 0x52, 0, 0 };
+    /* One-byte byte codes none of which is Swan's (Wait 0x43 takes operands): PBAliveOrNot, StopAllTasks,
+     * ClearSound, ClearPBMessage, ClearSensorValue's neighbours of no operands ... */
+    static const uint8_t one_byte_codes[] = { 0x10, 0x50, 0x80, 0x90, 0x06, 0x16, 0x26, 0x36, 0x56, 0x66 };
     uint8_t select[2] = { 0x91, 0 }, n;
     unsigned long long worst = 0;
     const char *worst_what = "";
@@ -429,6 +440,20 @@ static void host_commands_on_a_full_memory_leave_the_clock_its_time(void **state
     code_intact(40 + 49, BIG_TASK);
     MEASURED("DeleteAllTasks, full slot", command(del_tasks, sizeof del_tasks));
     code_intact(40 + 10, BIG_TASK);       /* moved down */
+    code_intact(40 + 49, BIG_TASK);
+    /* A download in the longest blocks a host may send, of one-byte byte codes (each looked at for Swan code). */
+    MEASURED("task 8 again in 200-byte blocks of one-byte byte codes",
+             download_some(8, BIG_TASK + 160, 200, one_byte_codes, sizeof one_byte_codes, ~0u));
+    code_intact(40 + 49, BIG_TASK);
+    /* Two resizes in one command, each with code before and after it in the slot: a download abandoned by the next
+     * BeginOfTask (one block of it sent), and a DeleteAllTasks that meets the download in progress (the download
+     * stays: reference-firmware.md). */
+    download(0, BIG_TASK);
+    download_some(2, BIG_TASK, BLOCK, setvar, sizeof setvar, 1);
+    MEASURED("BeginOfTask abandoning a download, memory full",
+             download_some(6, BIG_TASK, BLOCK, setvar, sizeof setvar, 1));
+    code_intact(40 + 49, BIG_TASK);
+    MEASURED("DeleteAllTasks meeting the download in progress", command(del_tasks, sizeof del_tasks));
     code_intact(40 + 49, BIG_TASK);
     MEASURED("nqc -clear", {
         command(stop, sizeof stop);

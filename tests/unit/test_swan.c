@@ -304,8 +304,8 @@ static u8 kind_in_blocks(const u8 *code, unsigned len, unsigned size)
     return kind;
 }
 
-/* The kind is found as the blocks come (vm/swan.c, swan_block), walked instruction by instruction whatever the blocks'
- * sizes: a Swan opcode's byte inside an operand is none, SCheckDo's source is read when it comes in the next block.
+/* The kind is found as the blocks come (vm/swanblock.c, swan_block), walked instruction by instruction whatever the
+ * blocks' sizes: a Swan opcode's byte inside an operand is none, SCheckDo's source is read when it comes in the next block.
  * (Plain code, then Swan's: no such program runs here.) */
 static void swan_code_found_whatever_the_blocks(void **state)
 {
