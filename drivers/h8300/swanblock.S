@@ -9,8 +9,8 @@
 ;
 ; void swan_block(struct rcx *b, const u8 *src, u16 count)
 ;
-; Registers in the walk: r0 what is being worked out; r1 = whole (the walk stops there); r2 = p; r3l = the opcode;
-; r4 the map's byte, then the operand bytes; r5 = b; r6 = code (the object's first byte); at @r7: end (one past
+; Registers in the walk: r0 what is being worked out (the map's byte, the operand bytes); r1 = whole (the walk stops
+; there); r2 = p; r3l = the opcode; r4 scratch; r5 = b; r6 = code (the object's first byte); at @r7: end (one past
 ; the bytes written). r4-r6 are gcc's to keep: saved by ___rcx_save6, given back by ___rcx_ret_a6 (tails.s).
 
 #include "swanblock.h"
@@ -60,10 +60,9 @@ walk:	cmp.w	r1,r2
 	shlr	r0l
 	shlr	r0l
 	shlr	r0l
-	mov.w	#_swan_bits,r4
-	add.b	r0l,r4l
-	addx	#0,r4h
-	btst	r3l,@r4			; bit op & 7 of byte op >> 3
+	mov.b	#0,r0h
+	mov.b	@(_swan_bits,r0),r0l
+	btst	r3l,r0l			; bit op & 7 of byte op >> 3
 	bne	swan
 	mov.b	r3l,r0l			; the operand bytes, as rcx_op_params(): the row of the opcode with the toggle
 	shlr	r0l			; bit folded out, ((op >> 1) & 0x78) | (op & 7) ...
@@ -138,6 +137,36 @@ scanned:
 	bne	out			; other code in the slot: the kind it had (kept by those objects)
 set:	mov.b	r3l,@(SB_SWAN,r4)
 out:	jmp	@___rcx_ret_a6		; (end off the stack)
+
+; const struct rcx_swan_row *rcx_swan_find(u8 op) (vm/swandec.c, whose C is the reference): the row of Swan's opcode
+; op, or NULL. The map first: the byte codes run_slow() runs (vm/interp.c) are RCX 2.0's, told so in some 90 states.
+; Then the row: the families' first (op & 0xF8 their first opcode), then the single opcodes' (all eight bits), where
+; the map says there is one. Registers: r0 the map's byte, then the row; r1l what is compared, r1h the families left;
+; r2l a row's opcode; r3l = op.
+	.global	_rcx_swan_find
+_rcx_swan_find:
+	mov.b	r0l,r3l
+	shlr	r0l
+	shlr	r0l
+	shlr	r0l
+	mov.b	#0,r0h
+	mov.b	@(_swan_bits,r0),r0l
+	btst	r3l,r0l
+	beq	none
+	mov.w	#_rcx_swan_rows,r0
+	mov.b	r3l,r1l
+	and.b	#0xF8,r1l
+	mov.b	#SB_SWAN_FAMILIES,r1h
+1:	mov.b	@r0,r2l
+	cmp.b	r2l,r1l
+	beq	2f
+	adds	#2,r0
+	dec	r1h
+	bne	1b
+	mov.b	r3l,r1l			; past the families (r1h goes on from 0: the row comes first)
+	bra	1b
+none:	sub.w	r0,r0
+2:	rts
 
 ; One bit an opcode, bit op & 7 of byte op >> 3: set for Swan's opcodes, the RCX_SWAN_OP rows of
 ; include/rcx_opcodes.def (a family of eight starts at a multiple of 8: one whole byte).

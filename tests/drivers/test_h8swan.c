@@ -2,7 +2,7 @@
 /*
  * The brick's swan_block() (drivers/h8300/swanblock.S, run in the H8/300 simulator on the image's own machine)
  * against its reference, the C of vm/swanblock.c compiled here for the host:
- * - its map of Swan's opcodes against rcx_swan_find() for every byte;
+ * - its map of Swan's opcodes against rcx_swan_find() for every byte, and the image's rcx_swan_find() against the C;
  * - random downloads (RCX 2.0's byte codes with their operands, Swan's opcodes, SCheckDo/LCheckDo of sources 43
  *   and 44 and of others, stray bytes; whole or cut short) in random blocks, into any object of a memory holding
  *   other code, a slot that was or was not a Swan program: after each block the object's bytes, the offsets of
@@ -63,6 +63,14 @@ static void map_is_swans_opcodes(void **state)
         n += (unsigned)in_map;
     }
     assert_int_equal(n, 5 * 8 + 20); /* five families of eight, 20 single opcodes (rcx_opcodes.def) */
+    /* The image's rcx_swan_find() (swanblock.S too) finds the C's row, or none. */
+    for (op = 0; op < 256; op++) {
+        const struct rcx_swan_row *r = rcx_swan_find((u8)op);
+        long got = h8_run(&h, "_rcx_swan_find", (uint16_t)op, 0, 0, NULL, 0);
+
+        if (!r != !got || (r && (h.mem[got] != r->code || h.mem[got + 1] != r->info)))
+            fail_msg("rcx_swan_find(0x%02X): image %04lX, C %s", op, got, r ? "a row" : "NULL");
+    }
     /* What the walk also takes for granted: 6 or 7 operand bytes are SCheckDo's and LCheckDo's, and no other's. */
     for (op = 0; op < 256; op++)
         assert_int_equal(rcx_op_params((u8)op) >= 6, (op & 0xE7) == 0x85);
