@@ -10,6 +10,17 @@
 static struct { char name[64]; uint16_t addr; char code; } sym[SYMS];
 static int nsym;
 
+int h8_image_args(int argc, char **argv, const char **image, const char **nm)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
+        return 2;
+    }
+    *image = argv[1];
+    *nm = argv[2];
+    return 0;
+}
+
 long h8_sym(const char *name)
 {
     int i;

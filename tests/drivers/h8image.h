@@ -21,6 +21,9 @@ int h8_image_read(struct h8 *h, const char *image, const char *nm);
 int h8_image_start(struct h8 *h);
 /* The states the last h8_image_start() took from the entry until the unpacker had finished (0: it never did). */
 extern unsigned long long h8_unpack_states;
+/* The command line of a test of the image, <firmware image> <h8300 nm>: 0 with *image and *nm set, or 2 after a
+ * usage message (the test's exit status). */
+int h8_image_args(int argc, char **argv, const char **image, const char **nm);
 /* The address of a symbol (C name with its leading underscore), -1 if absent. */
 long h8_sym(const char *name);
 /* The function whose code holds `pc` (the nearest code symbol at or below it), "?" if none. */

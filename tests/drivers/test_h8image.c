@@ -806,11 +806,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(timer_interrupt_leaves_out_scans_at_rest, load),
         cmocka_unit_test(hand_back_leaves_registers_as_after_reset),
     };
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
+    if (h8_image_args(argc, argv, &image_path, &nm_path))
         return 2;
-    }
-    image_path = argv[1];
-    nm_path = argv[2];
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

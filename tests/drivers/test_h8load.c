@@ -476,11 +476,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_setup(sixteen_events_on_changing_inputs_all_fire_and_the_tick_keeps_its_bound, boot),
         cmocka_unit_test_setup(host_commands_on_a_full_memory_leave_the_clock_its_time, boot),
     };
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
+    if (h8_image_args(argc, argv, &image_path, &nm_path))
         return 2;
-    }
-    image_path = argv[1];
-    nm_path = argv[2];
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

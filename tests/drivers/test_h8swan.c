@@ -264,11 +264,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(random_downloads),
         cmocka_unit_test(a_long_block_is_quick),
     };
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s <firmware image> <h8300 nm>\n", argv[0]);
+    if (h8_image_args(argc, argv, &image_path, &nm_path))
         return 2;
-    }
-    image_path = argv[1];
-    nm_path = argv[2];
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
