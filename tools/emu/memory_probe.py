@@ -48,13 +48,15 @@ def step(b, rep, name, *nqc_args, timeout=600):
     return worst
 
 
-def raw_step(b, rep, name, hexbytes):
-    """One raw command answered with status 0 (a download's); its reply latency from the IR log."""
+def raw_step(b, rep, name, hexbytes, want=b"\x00"):
+    """One raw command answered with `want` after its opcode (a download's status 0 by default); its reply latency
+    from the IR log."""
     mark = os.path.getsize(b.irlog)
     r = b.raw_cmd(hexbytes, timeout=60)
     lat = b.reply_latencies_ms(mark)
     worst = max(lat) if lat else float("nan")
-    rep.check(name, r == b"\x00", "reply %s, latency %.1f ms" % (r.hex() if r is not None else "none", worst))
+    got = "none" if r is None else r.hex() or "(the opcode only)"
+    rep.check(name, r == want, "reply %s, latency %.1f ms" % (got, worst))
     return worst
 
 
@@ -103,7 +105,8 @@ def main():
         raw_step(b, rep, "one block of it", block(0x45, 1, bytes([0x14, 1, 2, 1, 0] * 4)))
         raw_step(b, rep, "BeginOfTask 5 abandoning it", "250005000f00")
         raw_step(b, rep, "one block of that", block(0x4D, 1, bytes([0x14, 1, 2, 1, 0] * 3)))
-        raw_step(b, rep, "DeleteAllTasks meeting the download in progress", "40")
+        raw_step(b, rep, "DeleteAllTasks meeting the download in progress", "40", b"")
+        raw_step(b, rep, "that download's last block (empty): it stayed", block(0x45, 0, b""))
         step(b, rep, "nqc -clear", "-clear")
         now = free_memory(b)
         rep.check("memory empty again", now is not None and empty is not None and empty - now <= 3,
