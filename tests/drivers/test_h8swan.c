@@ -245,8 +245,8 @@ static void a_long_block_is_quick(void **state)
     assert_true(states < 56000);
     assert_int_equal(host.dl_swan, 0); /* (not Swan code) */
 
-    /* Once Swan code is found, the blocks after it are not walked at all. */
-    code[0] = 0x2B;                    /* setgb */
+    /* Once Swan code is found, the blocks after it are not walked at all (nor the block it was found in again). */
+    code[190] = 0x2B;                  /* setgb, near the end of the first block */
     begin(rcx_obj_task(1, 0), sizeof code);
     block(code, 200, 1);
     same(1, 0);
