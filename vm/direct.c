@@ -106,7 +106,7 @@ static u8 continue_download(struct rcx *b, const u8 *cmd)
     b->dl.last = seq;
     b->dl.expect = (u16)(seq + 1); /* (after the last block, 0, nothing more is expected) */
 #if RCX_SWAN
-    swan_block(b, end - count, count); /* written, looked at for Swan code; the last ends the download (vm/swan.c) */
+    swan_block(b, end - count, count); /* written, looked at for Swan code; the last ends the download (swanblock.c) */
 #else
     memcpy(b->arena + at, end - count, count);
     if (!b->dl.last) {             /* the last block: the code may run from now on */

@@ -108,7 +108,6 @@ u8 mem_step(struct rcx *b)
     n = m->len;
     to = m->to;
     from = m->from;
-
     if (!n)
         return 0;
     if (n > RCX_MOVE_STEP)

@@ -2,9 +2,10 @@
 ; The brick's swan_block() (vm/swanblock.c, whose C is the reference and runs on the host): a download's block
 ; written, its instructions looked at for Swan code up to the first found, and the last block ending the download.
 ; An opcode is told Swan's by one bit of a 32-byte map (_swan_bits, below) where the C searches Swan's 27 rows: some
-; 160 states an instruction instead of 2 500, so that a block of 200 one-byte byte codes holds the main loop about
-; 2 ms, not 31 (issue 21 item 3); and in fewer bytes than gcc 3.4's code with rcx_op_params(), whose only caller on
-; the brick this was.
+; 230 states an instruction instead of 2 500, so that a block of 200 one-byte byte codes holds the main loop about
+; 3 ms, not 31 (issue 21 item 3); and in fewer bytes than gcc 3.4's code with rcx_op_params(), whose only caller on
+; the brick this was. rcx_swan_find() below reads the map with the same five instructions: kept in line here, where a
+; call would cost every instruction of the walk some 20 states more.
 ; tests/drivers/test_h8swan.c runs it against the C on random downloads, and the map against rcx_swan_find().
 ;
 ; void swan_block(struct rcx *b, const u8 *src, u16 count)
